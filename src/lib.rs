@@ -1,0 +1,11 @@
+//! sightline: exact object-space visibility.
+//!
+//! The pipeline (see `DESIGN.md`): load a [`scene::Scene`], place a [`camera::Camera`], project and
+//! clip every face into exact screen polygons ([`project`]), cull and analyse them, then render
+//! (the z-buffer reference in [`raster`]) or, in later stages, compute exact visible sets.
+
+pub mod error;
+pub mod scene;
+
+pub use error::{Error, LoadError, Location, Result};
+pub use scene::{Face, FaceId, Material, Mesh, Scene, load};

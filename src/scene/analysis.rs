@@ -1,0 +1,1 @@
+//! Scene analysis (not yet written).

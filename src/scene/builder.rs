@@ -1,0 +1,384 @@
+//! Building a [`Scene`] face by face. Every loader goes through this, so the scene invariants
+//! (planar, non-degenerate faces with stable ids) are kept in one place.
+
+use super::{Face, FaceId, LoadStats, Material, Mesh, Scene, Viewpoint, newell_normal};
+use glam::DVec3;
+use robust::{Coord, Coord3D, orient2d, orient3d};
+
+/// What became of one input polygon.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FaceOutcome {
+    /// Kept as one planar polygon.
+    Kept,
+    /// Not planar: split into this many triangles, all carrying the polygon's id.
+    Triangulated(usize),
+    /// Fewer than three distinct corners, or all corners collinear: dropped (the id is used up).
+    Degenerate,
+}
+
+/// Accumulates vertices, materials, meshes and faces; see [`Scene`] for the invariants kept.
+#[derive(Debug)]
+pub struct SceneBuilder {
+    scene: Scene,
+    mesh_open: bool,
+    default_material: Option<u32>,
+    scratch: Vec<u32>,
+}
+
+impl SceneBuilder {
+    pub fn new(source: &str) -> Self {
+        SceneBuilder {
+            scene: Scene {
+                source: source.to_string(),
+                ..Scene::default()
+            },
+            mesh_open: false,
+            default_material: None,
+            scratch: Vec::new(),
+        }
+    }
+
+    /// Adds a material and returns its index.
+    pub fn add_material(&mut self, material: Material) -> u32 {
+        self.scene.materials.push(material);
+        (self.scene.materials.len() - 1) as u32
+    }
+
+    /// The index of the default material (0.8 grey, opaque, one-sided), added on first use.
+    pub fn default_material(&mut self) -> u32 {
+        match self.default_material {
+            Some(m) => m,
+            None => {
+                let m = self.add_material(Material::default());
+                self.default_material = Some(m);
+                m
+            }
+        }
+    }
+
+    /// Starts a new mesh; faces added from now on belong to it. An empty previous mesh is
+    /// replaced rather than kept.
+    pub fn begin_mesh(&mut self, name: impl Into<String>) {
+        let start = self.scene.faces.len();
+        if self.mesh_open
+            && let Some(last) = self.scene.meshes.last_mut()
+            && last.faces.is_empty()
+        {
+            last.name = name.into();
+            return;
+        }
+        self.scene.meshes.push(Mesh {
+            name: name.into(),
+            faces: start..start,
+        });
+        self.mesh_open = true;
+    }
+
+    /// Adds a vertex. The caller has checked that it is finite (it knows the line to blame).
+    pub fn add_vertex(&mut self, p: DVec3) -> u32 {
+        debug_assert!(p.is_finite());
+        self.scene.positions.push(p);
+        (self.scene.positions.len() - 1) as u32
+    }
+
+    pub fn vertex_count(&self) -> usize {
+        self.scene.positions.len()
+    }
+
+    pub fn position(&self, v: u32) -> DVec3 {
+        self.scene.positions[v as usize]
+    }
+
+    /// Number of input faces so far (the id the next face will get).
+    pub fn next_face_id(&self) -> FaceId {
+        self.scene.input_faces
+    }
+
+    pub fn warn(&mut self, message: impl Into<String>) {
+        self.scene.stats.warnings.push(message.into());
+    }
+
+    pub fn set_viewpoint(&mut self, viewpoint: Viewpoint) {
+        self.scene.viewpoint = Some(viewpoint);
+    }
+
+    /// Adds one input polygon (vertex indices, counter-clockwise seen from the front). The caller
+    /// has checked that every index is in range. The polygon always uses up one id.
+    pub fn add_face(&mut self, corners: &[u32], material: u32) -> FaceOutcome {
+        debug_assert!(
+            corners
+                .iter()
+                .all(|&c| (c as usize) < self.scene.positions.len())
+        );
+        let id = self.scene.input_faces;
+        self.scene.input_faces += 1;
+        if !self.mesh_open {
+            self.begin_mesh("mesh");
+        }
+
+        // Drop consecutive repeats (by index or by position), cyclically.
+        let mut clean = std::mem::take(&mut self.scratch);
+        clean.clear();
+        let pos = &self.scene.positions;
+        for &c in corners {
+            if clean
+                .last()
+                .is_none_or(|&l| pos[l as usize] != pos[c as usize])
+            {
+                clean.push(c);
+            }
+        }
+        while clean.len() > 1 && pos[clean[0] as usize] == pos[*clean.last().unwrap() as usize] {
+            clean.pop();
+        }
+
+        let outcome = match non_collinear_triple(pos, &clean) {
+            None => {
+                self.scene.stats.degenerate_dropped += 1;
+                FaceOutcome::Degenerate
+            }
+            Some((a, b, c)) => {
+                if clean.len() == 3 || is_planar(pos, &clean, a, b, c) {
+                    self.push_face(id, material, &clean);
+                    FaceOutcome::Kept
+                } else {
+                    let triangles = triangulate(pos, &clean);
+                    self.scene.stats.nonplanar_triangulated += 1;
+                    let mut kept = 0;
+                    for t in &triangles {
+                        if non_collinear_triple(&self.scene.positions, t).is_some() {
+                            self.push_face(id, material, t);
+                            kept += 1;
+                        }
+                    }
+                    FaceOutcome::Triangulated(kept)
+                }
+            }
+        };
+        self.scratch = clean;
+        outcome
+    }
+
+    fn push_face(&mut self, id: FaceId, material: u32, corners: &[u32]) {
+        let start = self.scene.corners.len() as u32;
+        self.scene.corners.extend_from_slice(corners);
+        self.scene.faces.push(Face {
+            id,
+            mesh: (self.scene.meshes.len() - 1) as u32,
+            material,
+            start,
+            len: corners.len() as u32,
+        });
+        self.scene.meshes.last_mut().unwrap().faces.end = self.scene.faces.len();
+    }
+
+    /// Finishes the scene. Returns `None` when it holds no face (the loader reports that, since it
+    /// knows the file).
+    pub fn finish(mut self) -> Option<Scene> {
+        self.scene.meshes.retain(|m| !m.faces.is_empty());
+        // Mesh indices in faces must follow the retained meshes.
+        for (i, m) in self.scene.meshes.iter().enumerate() {
+            for f in &mut self.scene.faces[m.faces.clone()] {
+                f.mesh = i as u32;
+            }
+        }
+        if self.scene.faces.is_empty() {
+            None
+        } else {
+            Some(self.scene)
+        }
+    }
+
+    /// The load statistics so far (for loaders that report them before finishing).
+    pub fn stats(&self) -> &LoadStats {
+        &self.scene.stats
+    }
+}
+
+fn c3(p: DVec3) -> Coord3D<f64> {
+    Coord3D {
+        x: p.x,
+        y: p.y,
+        z: p.z,
+    }
+}
+
+/// Exact: are three points collinear? (All three axis-plane projections have zero area.)
+fn collinear(a: DVec3, b: DVec3, c: DVec3) -> bool {
+    let o = |(ax, ay): (f64, f64), (bx, by): (f64, f64), (cx, cy): (f64, f64)| {
+        orient2d(Coord { x: ax, y: ay }, Coord { x: bx, y: by }, Coord { x: cx, y: cy })
+    };
+    o((a.x, a.y), (b.x, b.y), (c.x, c.y)) == 0.0
+        && o((a.y, a.z), (b.y, b.z), (c.y, c.z)) == 0.0
+        && o((a.z, a.x), (b.z, b.x), (c.z, c.x)) == 0.0
+}
+
+/// Positions in `corners` of three points that are not collinear, chosen exactly; `None` when the
+/// polygon is degenerate.
+fn non_collinear_triple(pos: &[DVec3], corners: &[u32]) -> Option<(usize, usize, usize)> {
+    if corners.len() < 3 {
+        return None;
+    }
+    let p = |i: usize| pos[corners[i] as usize];
+    let a = 0;
+    let b = (1..corners.len()).find(|&i| p(i) != p(a))?;
+    let c = (b + 1..corners.len()).find(|&i| !collinear(p(a), p(b), p(i)))?;
+    Some((a, b, c))
+}
+
+/// Exact coplanarity of every corner with the plane through corners a, b, c.
+fn is_planar(pos: &[DVec3], corners: &[u32], a: usize, b: usize, c: usize) -> bool {
+    let p = |i: usize| c3(pos[corners[i] as usize]);
+    (0..corners.len()).all(|i| orient3d(p(a), p(b), p(c), p(i)) == 0.0)
+}
+
+/// Triangulates a non-planar polygon: a constrained Delaunay triangulation (spade) of its
+/// projection on the plane most perpendicular to its Newell normal, keeping the triangles inside
+/// the projected polygon and the polygon's winding. Falls back to a fan when the projection is
+/// not a simple polygon.
+fn triangulate(pos: &[DVec3], corners: &[u32]) -> Vec<Vec<u32>> {
+    use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
+
+    let n = newell_normal(corners.iter().map(|&c| pos[c as usize]));
+    let (i, j) = match n.abs().max_position() {
+        0 => (1, 2),
+        1 => (2, 0),
+        _ => (0, 1),
+    };
+    let flip = n[3 - i - j] < 0.0;
+    let proj: Vec<[f64; 2]> = corners
+        .iter()
+        .map(|&c| {
+            let p = pos[c as usize];
+            [p[i], p[j]]
+        })
+        .collect();
+    let fan = || {
+        (1..corners.len() - 1)
+            .map(|k| vec![corners[0], corners[k], corners[k + 1]])
+            .collect()
+    };
+
+    let mut cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::new();
+    let mut handle_corner: Vec<usize> = Vec::new();
+    let mut handles = Vec::with_capacity(proj.len());
+    for (k, q) in proj.iter().enumerate() {
+        let Ok(h) = cdt.insert(Point2::new(q[0], q[1])) else {
+            return fan();
+        };
+        if h.index() == handle_corner.len() {
+            handle_corner.push(k);
+        } else {
+            // Two corners project to one point: not a simple projection.
+            return fan();
+        }
+        handles.push(h);
+    }
+    for k in 0..handles.len() {
+        let (a, b) = (handles[k], handles[(k + 1) % handles.len()]);
+        if !cdt.can_add_constraint(a, b) {
+            return fan();
+        }
+        cdt.add_constraint(a, b);
+    }
+    let mut out = Vec::new();
+    for face in cdt.inner_faces() {
+        let vs = face.vertices();
+        let cx = vs.iter().map(|v| v.position().x).sum::<f64>() / 3.0;
+        let cy = vs.iter().map(|v| v.position().y).sum::<f64>() / 3.0;
+        if !inside_even_odd(&proj, cx, cy) {
+            continue;
+        }
+        // spade's faces are counter-clockwise in the projection plane.
+        let mut tri: Vec<u32> = vs
+            .iter()
+            .map(|v| corners[handle_corner[v.fix().index()]])
+            .collect();
+        if flip {
+            tri.reverse();
+        }
+        out.push(tri);
+    }
+    if out.is_empty() { fan() } else { out }
+}
+
+fn inside_even_odd(poly: &[[f64; 2]], x: f64, y: f64) -> bool {
+    let mut inside = false;
+    for k in 0..poly.len() {
+        let a = poly[k];
+        let b = poly[(k + 1) % poly.len()];
+        if (a[1] > y) != (b[1] > y) {
+            let xc = a[0] + (y - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
+            if x < xc {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn builder_with(points: &[[f64; 3]]) -> SceneBuilder {
+        let mut b = SceneBuilder::new("test");
+        for p in points {
+            b.add_vertex(DVec3::from_array(*p));
+        }
+        b
+    }
+
+    #[test]
+    fn planar_quad_is_kept_whole() {
+        let mut b = builder_with(&[[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]]);
+        let m = b.default_material();
+        assert_eq!(b.add_face(&[0, 1, 2, 3], m), FaceOutcome::Kept);
+        let s = b.finish().unwrap();
+        assert_eq!(s.faces.len(), 1);
+        assert_eq!(s.face_corners(&s.faces[0]), &[0, 1, 2, 3]);
+    }
+
+    #[test]
+    fn nonplanar_polygon_is_triangulated_with_one_id_and_its_winding() {
+        // An L-shaped hexagon lifted at one corner: non-planar, non-convex.
+        let mut b = builder_with(&[
+            [0., 0., 0.],
+            [2., 0., 0.],
+            [2., 1., 0.],
+            [1., 1., 0.],
+            [1., 2., 0.5],
+            [0., 2., 0.],
+        ]);
+        let m = b.default_material();
+        assert_eq!(b.add_face(&[0, 1, 2, 3, 4, 5], m), FaceOutcome::Triangulated(4));
+        let s = b.finish().unwrap();
+        assert_eq!(s.stats.nonplanar_triangulated, 1);
+        let mut area = 0.0;
+        for f in &s.faces {
+            assert_eq!(f.id, 0);
+            let n = s.face_normal(f);
+            assert!(n.z > 0.0, "piece lost the polygon's winding");
+            area += n.z / 2.0;
+        }
+        assert!((area - 3.0).abs() < 1e-12, "pieces cover the projected L: {area}");
+    }
+
+    #[test]
+    fn degenerate_faces_use_up_their_id() {
+        let mut b = builder_with(&[[0., 0., 0.], [1., 1., 1.], [2., 2., 2.], [0., 1., 0.]]);
+        let m = b.default_material();
+        assert_eq!(b.add_face(&[0, 1, 2], m), FaceOutcome::Degenerate);
+        assert_eq!(b.add_face(&[0, 0, 1], m), FaceOutcome::Degenerate);
+        assert_eq!(b.add_face(&[0, 1, 3], m), FaceOutcome::Kept);
+        let s = b.finish().unwrap();
+        assert_eq!(s.stats.degenerate_dropped, 2);
+        assert_eq!(s.faces[0].id, 2);
+        assert_eq!(s.input_faces, 3);
+    }
+
+    #[test]
+    fn empty_scene_is_none() {
+        assert!(SceneBuilder::new("x").finish().is_none());
+    }
+}

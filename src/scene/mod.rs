@@ -1,0 +1,176 @@
+//! The scene model: meshes of planar polygonal faces, their materials and their provenance.
+//!
+//! Invariants every `Scene` keeps (the loaders build scenes only through [`SceneBuilder`]):
+//! - every face is planar, exactly, in the f64 input coordinates (a non-planar input polygon is
+//!   triangulated and each piece keeps the polygon's id);
+//! - every face has at least three corners and is not degenerate (its corners are not all
+//!   collinear); degenerate input faces are dropped and counted in [`LoadStats`];
+//! - a face's id is its index in input order across the whole scene, so ids of dropped faces leave
+//!   gaps and the pieces of a triangulated polygon share one id;
+//! - every coordinate is finite.
+
+pub mod analysis;
+mod builder;
+pub mod load;
+mod mtl;
+mod obj;
+mod ply;
+pub mod primitives;
+mod stl;
+mod x3d;
+
+pub use builder::{FaceOutcome, SceneBuilder};
+pub use load::{Format, load, load_bytes};
+
+use glam::DVec3;
+use std::ops::Range;
+
+/// Index of an input face, in input order across the whole scene.
+pub type FaceId = u32;
+
+/// Surface appearance of a face.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    pub name: String,
+    /// Lit color (linear RGB in [0,1]), scaled by ambient + Lambert terms when shading.
+    pub diffuse: [f64; 3],
+    /// Unlit color added to the lit one (X3D emissiveColor, OBJ Ke).
+    pub emissive: [f64; 3],
+    /// 0 = opaque, 1 = invisible.
+    pub transparency: f64,
+    /// Seen from both sides: never back-face culled.
+    pub two_sided: bool,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Material {
+            name: "default".into(),
+            diffuse: [0.8, 0.8, 0.8],
+            emissive: [0.0; 3],
+            transparency: 0.0,
+            two_sided: false,
+        }
+    }
+}
+
+/// One planar polygon of the scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Face {
+    /// Provenance: index of the input face this polygon came from.
+    pub id: FaceId,
+    /// Index into [`Scene::meshes`].
+    pub mesh: u32,
+    /// Index into [`Scene::materials`].
+    pub material: u32,
+    /// Range into [`Scene::corners`].
+    pub start: u32,
+    pub len: u32,
+}
+
+/// A named group of faces loaded together (an OBJ object, an X3D Shape, a whole STL or PLY file).
+/// Closedness and orientation are decided per mesh.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Mesh {
+    pub name: String,
+    /// Range into [`Scene::faces`].
+    pub faces: Range<usize>,
+}
+
+/// A camera stored in the input file (X3D Viewpoint).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Viewpoint {
+    pub position: DVec3,
+    /// Rotation of the default view (looking down -z, y up), as a unit axis and an angle in radians.
+    pub orientation_axis: DVec3,
+    pub orientation_angle: f64,
+    /// X3D fieldOfView: the smaller of the horizontal and vertical angles, radians.
+    pub field_of_view: f64,
+}
+
+/// What loading noticed but did not refuse.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LoadStats {
+    /// Input faces dropped because all their corners were collinear or they had fewer than three
+    /// distinct corners.
+    pub degenerate_dropped: usize,
+    /// Input polygons that were not exactly planar and were triangulated.
+    pub nonplanar_triangulated: usize,
+    pub warnings: Vec<String>,
+}
+
+/// A loaded scene. See the module docs for the invariants.
+#[derive(Clone, Debug, Default)]
+pub struct Scene {
+    /// Name of the source, for messages.
+    pub source: String,
+    pub positions: Vec<DVec3>,
+    pub faces: Vec<Face>,
+    /// Vertex indices of all faces, face after face; counter-clockwise seen from the front.
+    pub corners: Vec<u32>,
+    pub meshes: Vec<Mesh>,
+    pub materials: Vec<Material>,
+    pub viewpoint: Option<Viewpoint>,
+    /// Number of input faces: ids are in `0..input_faces`.
+    pub input_faces: u32,
+    pub stats: LoadStats,
+}
+
+impl Scene {
+    /// The vertex indices of a face.
+    #[inline]
+    pub fn face_corners(&self, face: &Face) -> &[u32] {
+        &self.corners[face.start as usize..(face.start + face.len) as usize]
+    }
+
+    /// Iterator over a face's corner positions.
+    pub fn face_positions<'a>(&'a self, face: &'a Face) -> impl Iterator<Item = DVec3> + 'a {
+        self.face_corners(face)
+            .iter()
+            .map(move |&v| self.positions[v as usize])
+    }
+
+    /// Axis-aligned bounds of the vertices used by faces, or `None` for a scene with no face.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        if self.faces.is_empty() {
+            return None;
+        }
+        let mut used = vec![false; self.positions.len()];
+        for &c in &self.corners {
+            used[c as usize] = true;
+        }
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for (p, _) in self.positions.iter().zip(&used).filter(|(_, u)| **u) {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+        Some((lo, hi))
+    }
+
+    /// Newell normal of a face (not normalized; its length is twice the area).
+    pub fn face_normal(&self, face: &Face) -> DVec3 {
+        newell_normal(self.face_positions(face))
+    }
+}
+
+/// Newell's normal of a polygon: exact direction for a planar polygon up to rounding, length
+/// twice the area.
+pub fn newell_normal(points: impl Iterator<Item = DVec3>) -> DVec3 {
+    let mut n = DVec3::ZERO;
+    let mut it = points.peekable();
+    let first = match it.peek() {
+        Some(p) => *p,
+        None => return n,
+    };
+    // Centre on the first point to lose less precision far from the origin.
+    let pts: Vec<DVec3> = it.map(|p| p - first).collect();
+    for i in 0..pts.len() {
+        let a = pts[i];
+        let b = pts[(i + 1) % pts.len()];
+        n.x += (a.y - b.y) * (a.z + b.z);
+        n.y += (a.z - b.z) * (a.x + b.x);
+        n.z += (a.x - b.x) * (a.y + b.y);
+    }
+    n
+}

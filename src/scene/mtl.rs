@@ -1,0 +1,1 @@
+//! MTL material libraries for OBJ (not yet written).

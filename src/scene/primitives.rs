@@ -1,0 +1,1 @@
+//! Generated geometry: X3D primitives and benchmark meshes (not yet written).
