@@ -9,3 +9,9 @@ pub mod scene;
 
 pub use error::{Error, LoadError, Location, Result};
 pub use scene::{Face, FaceId, Material, Mesh, Scene, load};
+pub mod camera;
+pub mod exact;
+pub mod output;
+pub mod pipeline;
+pub mod project;
+pub mod raster;

@@ -1,1 +1,415 @@
-fn main() {}
+//! The `sightline` command line: parses flags and calls the library.
+
+use clap::{Args, Parser, Subcommand};
+use glam::DVec3;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use sightline::camera::{CamFile, Camera, CameraSpec, NamedView, Projection};
+use sightline::output::{png, write_atomic};
+use sightline::pipeline::{self, Fill};
+use sightline::project::CullMode;
+use sightline::scene::{self, Format, Scene};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+const EXAMPLES: &str = "\
+Examples:
+  sightline render fixtures/cube.obj -o cube.png
+  sightline render fixtures/seed_two_triangles.x3d --near 5 --far 10 --depth depth.png -o out.png
+  sightline render mesh.stl --view front --ortho 2.5 --size 800x600 -o front.png
+  sightline render mesh.ply --eye -1,2,3 --target 0,0,0 --fill id -o ids.png
+  sightline render bunny.obj --cam bunny.cam -o - > bunny.png
+  sightline info mesh.obj --view iso";
+
+#[derive(Parser)]
+#[command(
+    name = "sightline",
+    version,
+    about = "Exact visibility: which parts of a 3D scene a camera sees",
+    after_help = EXAMPLES
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene to PNG with the z-buffer (the reference method).
+    #[command(after_help = EXAMPLES)]
+    Render(RenderArgs),
+    /// Describe a scene: counts, closedness, bounds, culling, and which stages it needs.
+    #[command(after_help = EXAMPLES)]
+    Info(InfoArgs),
+}
+
+#[derive(Args)]
+struct InputArgs {
+    /// Scene file: .obj, .stl, .ply or .x3d (optionally gzipped: .obj.gz, ...).
+    input: PathBuf,
+    /// Read the input as this format, whatever its extension.
+    #[arg(long, value_enum)]
+    format: Option<Format>,
+}
+
+#[derive(Args)]
+struct CameraArgs {
+    /// Camera position, x,y,z.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    eye: Option<DVec3>,
+    /// Point looked at, x,y,z.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    target: Option<DVec3>,
+    /// Up direction, x,y,z.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    up: Option<DVec3>,
+    /// Perspective projection with this vertical field of view, degrees (default 40).
+    #[arg(long, value_name = "DEG", conflicts_with = "ortho")]
+    fov: Option<f64>,
+    /// Orthographic projection with this view height, world units.
+    #[arg(long, value_name = "HEIGHT")]
+    ortho: Option<f64>,
+    /// Near clipping distance (default: fitted to the scene).
+    #[arg(long, allow_hyphen_values = true)]
+    near: Option<f64>,
+    /// Far clipping distance (default: fitted to the scene).
+    #[arg(long, allow_hyphen_values = true)]
+    far: Option<f64>,
+    /// Image size, WxH (default 1024x1024).
+    #[arg(long, value_parser = parse_size, value_name = "WxH")]
+    size: Option<(u32, u32)>,
+    /// A named view fitted to the scene's bounds.
+    #[arg(long, value_enum)]
+    view: Option<NamedView>,
+    /// A camera file (lines: eye, target, up, fovy, ortho_height, near, far, size).
+    #[arg(long, value_name = "FILE")]
+    cam: Option<PathBuf>,
+    /// Back-face culling: auto culls closed, consistently oriented, one-sided meshes.
+    #[arg(long, value_enum, default_value_t = CullMode::Auto)]
+    cull: CullMode,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum Method {
+    /// Z-buffer with exact coverage and depth at pixel centres (the reference).
+    Zbuffer,
+}
+
+#[derive(Args)]
+struct RenderArgs {
+    #[command(flatten)]
+    input: InputArgs,
+    #[command(flatten)]
+    camera: CameraArgs,
+    /// Output PNG file, or - for standard output.
+    #[arg(short, long, value_name = "OUT.png")]
+    output: PathBuf,
+    /// Rendering method.
+    #[arg(long, value_enum, default_value_t = Method::Zbuffer)]
+    method: Method,
+    /// Pixel colours: flat shading, or face id + 1 as 24-bit RGB on black.
+    #[arg(long, value_enum, default_value_t = Fill::Shade)]
+    fill: Fill,
+    /// Background colour for shaded images, r,g,b in 0..=255.
+    #[arg(long, value_parser = parse_rgb, default_value = "255,255,255")]
+    background: [u8; 3],
+    /// Also write the depth buffer as 16-bit grey PNG (0 near, 65535 far and background).
+    #[arg(long, value_name = "FILE.png")]
+    depth: Option<PathBuf>,
+    /// Print timings and counters to stderr.
+    #[arg(long)]
+    stats: bool,
+}
+
+#[derive(Args)]
+struct InfoArgs {
+    #[command(flatten)]
+    input: InputArgs,
+    #[command(flatten)]
+    camera: CameraArgs,
+}
+
+fn parse_vec3(s: &str) -> Result<DVec3, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|t| {
+            t.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("'{t}' is not a number"))
+        })
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(DVec3::new(x, y, z)),
+        [_, _, _] => Err("values must be finite".into()),
+        _ => Err(format!(
+            "expected x,y,z (three numbers), got {} values",
+            v.len()
+        )),
+    }
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WxH, e.g. 1024x768, got '{s}'"))?;
+    let p = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("'{t}' is not a positive integer"))
+    };
+    Ok((p(w)?, p(h)?))
+}
+
+fn parse_rgb(s: &str) -> Result<[u8; 3], String> {
+    let v: Vec<u8> = s
+        .split(',')
+        .map(|t| {
+            t.trim()
+                .parse::<u8>()
+                .map_err(|_| format!("'{t}' is not in 0..=255"))
+        })
+        .collect::<Result<_, _>>()?;
+    v.try_into()
+        .map_err(|_| "expected r,g,b (three values in 0..=255)".to_string())
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(a) => render(a),
+        Command::Info(a) => info(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn progress_bar(len: u64, what: &str) -> ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::stderr());
+    bar.set_style(
+        ProgressStyle::with_template("{msg:10} [{bar:40}] {pos}/{len} ({elapsed})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    bar.set_message(what.to_string());
+    bar
+}
+
+fn load_scene(input: &InputArgs) -> sightline::Result<Scene> {
+    let spinner = progress_bar(1, "loading");
+    let scene = scene::load(&input.input, input.format)?;
+    spinner.finish_and_clear();
+    let name = input.input.display();
+    for w in &scene.stats.warnings {
+        eprintln!("warning: {name}: {w}");
+    }
+    Ok(scene)
+}
+
+fn camera_for(args: &CameraArgs, scene: &Scene) -> sightline::Result<Camera> {
+    let cam_file = match &args.cam {
+        Some(path) => {
+            let name = path.display().to_string();
+            let text = std::fs::read_to_string(path).map_err(|e| sightline::Error::Io {
+                path: name.clone(),
+                source: e,
+            })?;
+            Some(CamFile::parse(&text, &name)?)
+        }
+        None => None,
+    };
+    let spec = CameraSpec {
+        cam_file,
+        view: args.view,
+        eye: args.eye,
+        target: args.target,
+        up: args.up,
+        fovy_deg: args.fov,
+        ortho_height: args.ortho,
+        near: args.near,
+        far: args.far,
+        size: args.size,
+    };
+    let bounds = scene
+        .bounds()
+        .expect("a loaded scene has at least one face");
+    spec.resolve(bounds, scene.viewpoint.as_ref())
+}
+
+fn render(a: RenderArgs) -> sightline::Result<()> {
+    let t0 = Instant::now();
+    let scene = load_scene(&a.input)?;
+    let t_load = t0.elapsed();
+    let camera = camera_for(&a.camera, &scene)?;
+    let Method::Zbuffer = a.method;
+    let t1 = Instant::now();
+    let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
+    let t_project = t1.elapsed();
+    let bar = progress_bar(prepared.screen.polys.len() as u64, "rendering");
+    let t2 = Instant::now();
+    let zb = sightline::raster::zbuffer::render(&prepared.screen, |n| bar.set_position(n as u64));
+    let t_raster = t2.elapsed();
+    bar.finish_and_clear();
+    let image = pipeline::colorize(&scene, &prepared.screen, &zb, &camera, a.fill, a.background);
+    let bytes = png::encode_rgb(camera.width, camera.height, image)?;
+    if let Some(depth_path) = &a.depth {
+        let depth = zb.normalized_depth(&prepared.screen);
+        let d = png::encode_depth16(camera.width, camera.height, &depth)?;
+        write_atomic(depth_path, &d)?;
+    }
+    write_atomic(&a.output, &bytes)?;
+    if a.stats {
+        let s = &prepared.screen.stats;
+        eprintln!(
+            "load {:.3}s, project+cull {:.3}s, z-buffer {:.3}s",
+            t_load.as_secs_f64(),
+            t_project.as_secs_f64(),
+            t_raster.as_secs_f64()
+        );
+        eprintln!(
+            "faces {} -> on screen {} (frustum culled {}, back faces culled {}, clipped {}, degenerate after snap {})",
+            s.faces,
+            s.visible_polys,
+            s.frustum_culled,
+            s.backface_culled,
+            s.clipped,
+            s.degenerate_after_snap
+        );
+        eprintln!(
+            "fragments {}, exact fallbacks: edge {} depth {}, depth ties {}",
+            zb.stats.fragments,
+            zb.stats.column_fallbacks,
+            zb.stats.depth_fallbacks,
+            zb.stats.depth_ties
+        );
+    }
+    Ok(())
+}
+
+fn info(a: InfoArgs) -> sightline::Result<()> {
+    let scene = load_scene(&a.input)?;
+    let camera = camera_for(&a.camera, &scene)?;
+    let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
+    print!("{}", describe(&a.input.input, &scene, &camera, &prepared));
+    Ok(())
+}
+
+fn describe(path: &Path, scene: &Scene, camera: &Camera, p: &pipeline::Prepared) -> String {
+    use std::fmt::Write;
+    let mut o = String::new();
+    let an = &p.analysis;
+    let st = &p.screen.stats;
+    let (lo, hi) = scene.bounds().expect("non-empty scene");
+    let v3 = |v: DVec3| format!("({}, {}, {})", v.x, v.y, v.z);
+    let _ = writeln!(o, "file: {}", path.display());
+    let _ = writeln!(
+        o,
+        "faces: {} polygons from {} input faces ({} degenerate dropped, {} non-planar triangulated)",
+        scene.faces.len(),
+        scene.input_faces,
+        scene.stats.degenerate_dropped,
+        scene.stats.nonplanar_triangulated
+    );
+    let _ = writeln!(o, "vertices: {}", scene.positions.len());
+    let closed = an.meshes.iter().filter(|m| m.closed()).count();
+    let _ = writeln!(
+        o,
+        "meshes: {} ({} closed, {} open)",
+        scene.meshes.len(),
+        closed,
+        scene.meshes.len() - closed
+    );
+    for (m, ma) in scene.meshes.iter().zip(&an.meshes).take(20) {
+        let state = if ma.closed() {
+            if ma.inside_out() {
+                "closed, inside-out (flipped)".to_string()
+            } else if ma.cullable() {
+                "closed".to_string()
+            } else {
+                "closed, orientation uncertain (zero volume)".to_string()
+            }
+        } else {
+            format!(
+                "open ({} boundary, {} non-manifold, {} inconsistent edges)",
+                ma.boundary_edges, ma.nonmanifold_edges, ma.inconsistent_edges
+            )
+        };
+        let _ = writeln!(
+            o,
+            "  {}: {} faces, {}, volume {:.6e}",
+            m.name,
+            m.faces.len(),
+            state,
+            ma.signed_volume
+        );
+    }
+    if scene.meshes.len() > 20 {
+        let _ = writeln!(o, "  ... {} more", scene.meshes.len() - 20);
+    }
+    let _ = writeln!(o, "bounds: min {} max {}", v3(lo), v3(hi));
+    let proj = match camera.projection {
+        Projection::Perspective { fovy_deg } => format!("perspective, fovy {fovy_deg} deg"),
+        Projection::Orthographic { height } => format!("orthographic, height {height}"),
+    };
+    let _ = writeln!(
+        o,
+        "camera: {proj}, eye {}, target {}, up {}, near {}, far {}, {}x{}",
+        v3(camera.eye),
+        v3(camera.target),
+        v3(camera.up),
+        camera.near,
+        camera.far,
+        camera.width,
+        camera.height
+    );
+    let _ = writeln!(
+        o,
+        "culling: {} frustum culled, {} back faces culled ({} meshes cullable, {} cut by the near plane), {} clipped, {} degenerate after snapping",
+        st.frustum_culled,
+        st.backface_culled,
+        st.culled_meshes,
+        st.meshes_cut_by_near,
+        st.clipped,
+        st.degenerate_after_snap
+    );
+    let _ = writeln!(o, "on screen: {} polygons", st.visible_polys);
+    let _ = writeln!(o, "stages needed:");
+    let overlap = pipeline::screen_extents_overlap(&p.screen);
+    let _ = writeln!(
+        o,
+        "  depth ordering (overlapping screen extents): {}",
+        if overlap { "yes" } else { "no" }
+    );
+    let _ = writeln!(
+        o,
+        "  splitting (interpenetration possible between meshes): {}",
+        if an.overlapping_mesh_pairs > 0 {
+            format!(
+                "yes, {} pairs of meshes with overlapping bounds",
+                an.overlapping_mesh_pairs
+            )
+        } else {
+            "no (self-intersection within a mesh is not checked)".to_string()
+        }
+    );
+    let _ = writeln!(
+        o,
+        "  blending (translucency): {}",
+        if an.translucent_faces > 0 {
+            format!("yes, {} translucent faces", an.translucent_faces)
+        } else {
+            "no".to_string()
+        }
+    );
+    let _ = writeln!(o, "two-sided faces: {}", an.two_sided_faces);
+    let _ = writeln!(o, "warnings: {}", scene.stats.warnings.len());
+    o
+}

@@ -1,0 +1,584 @@
+//! The camera: OpenGL conventions throughout.
+//!
+//! - World space is right-handed. The view matrix is gluLookAt(eye, target, up): the camera looks
+//!   down its -z axis with `up` projected to its +y.
+//! - The projection is gluPerspective(fovy, aspect, near, far) or glOrtho(-h·aspect/2, h·aspect/2,
+//!   -h/2, h/2, near, far), aspect = width / height. Clip space is OpenGL's: a point is inside when
+//!   -w <= x, y, z <= w; NDC z is -1 at the near plane and +1 at the far plane.
+//! - NDC [-1,1]² maps to the image [0,W] x [0,H] with y growing downward: pixel (i, j) has its
+//!   centre at x = i + 0.5, y = j + 0.5, which is NDC ((2i+1)/W - 1, 1 - (2j+1)/H).
+//!
+//! A `Camera` is valid (see [`Camera::validate`]) before any projection uses it.
+
+use crate::error::Error;
+use glam::dcamera::{self, rh::proj::opengl as gl};
+use glam::{DMat4, DQuat, DVec3};
+
+/// How the view volume is shaped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// Vertical field of view in degrees.
+    Perspective { fovy_deg: f64 },
+    /// Height of the view volume in world units.
+    Orthographic { height: f64 },
+}
+
+/// Named views, fitted to a bounding box (world +y is up, +z toward the front viewer).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum NamedView {
+    Front,
+    Back,
+    Top,
+    Bottom,
+    Left,
+    Right,
+    Iso,
+}
+
+impl NamedView {
+    /// Direction from the target to the eye, and the up vector.
+    pub fn direction_and_up(self) -> (DVec3, DVec3) {
+        match self {
+            NamedView::Front => (DVec3::Z, DVec3::Y),
+            NamedView::Back => (DVec3::NEG_Z, DVec3::Y),
+            NamedView::Top => (DVec3::Y, DVec3::NEG_Z),
+            NamedView::Bottom => (DVec3::NEG_Y, DVec3::Z),
+            NamedView::Left => (DVec3::NEG_X, DVec3::Y),
+            NamedView::Right => (DVec3::X, DVec3::Y),
+            NamedView::Iso => (DVec3::ONE.normalize(), DVec3::Y),
+        }
+    }
+}
+
+/// Default vertical field of view for fitted perspective views, degrees.
+pub const DEFAULT_FOVY_DEG: f64 = 40.0;
+
+/// A camera with its image size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub eye: DVec3,
+    pub target: DVec3,
+    pub up: DVec3,
+    pub projection: Projection,
+    pub near: f64,
+    pub far: f64,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// Largest image side: keeps every exact pixel-sample computation inside its bit budget
+/// (see `exact`).
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+impl Camera {
+    pub fn aspect(&self) -> f64 {
+        self.width as f64 / self.height as f64
+    }
+
+    pub fn view_matrix(&self) -> DMat4 {
+        dcamera::rh::view::look_at_mat4(self.eye, self.target, self.up)
+    }
+
+    pub fn projection_matrix(&self) -> DMat4 {
+        match self.projection {
+            Projection::Perspective { fovy_deg } => {
+                gl::perspective(fovy_deg.to_radians(), self.aspect(), self.near, self.far)
+            }
+            Projection::Orthographic { height } => {
+                let hw = height * self.aspect() / 2.0;
+                let hh = height / 2.0;
+                gl::orthographic(-hw, hw, -hh, hh, self.near, self.far)
+            }
+        }
+    }
+
+    /// World to clip space.
+    pub fn view_projection(&self) -> DMat4 {
+        self.projection_matrix() * self.view_matrix()
+    }
+
+    /// Unit vector the camera looks along.
+    pub fn forward(&self) -> DVec3 {
+        (self.target - self.eye).normalize()
+    }
+
+    pub fn is_perspective(&self) -> bool {
+        matches!(self.projection, Projection::Perspective { .. })
+    }
+
+    /// Checks that the camera defines a proper view volume.
+    pub fn validate(&self) -> Result<(), Error> {
+        let bad = |m: String| Err(Error::Camera(m));
+        for (name, v) in [("eye", self.eye), ("target", self.target), ("up", self.up)] {
+            if !v.is_finite() {
+                return bad(format!("camera {name} is not finite: {v}"));
+            }
+        }
+        let dir = self.target - self.eye;
+        if dir.length_squared() == 0.0 {
+            return bad("camera eye and target are the same point".into());
+        }
+        if dir.cross(self.up).length_squared() == 0.0 {
+            return bad("camera up vector is zero or parallel to the view direction".into());
+        }
+        if !(self.near.is_finite() && self.far.is_finite() && self.far > self.near) {
+            return bad(format!(
+                "need near < far, both finite (near {}, far {})",
+                self.near, self.far
+            ));
+        }
+        match self.projection {
+            Projection::Perspective { fovy_deg } => {
+                if self.near <= 0.0 {
+                    return bad(format!("perspective needs near > 0 (near {})", self.near));
+                }
+                if !(fovy_deg > 0.0 && fovy_deg < 180.0) {
+                    return bad(format!(
+                        "field of view must be in (0, 180) degrees (got {fovy_deg})"
+                    ));
+                }
+            }
+            Projection::Orthographic { height } => {
+                if !(height > 0.0 && height.is_finite()) {
+                    return bad(format!("orthographic height must be > 0 (got {height})"));
+                }
+            }
+        }
+        if self.width == 0
+            || self.height == 0
+            || self.width > MAX_IMAGE_SIDE
+            || self.height > MAX_IMAGE_SIDE
+        {
+            return bad(format!(
+                "image size {}x{} must be between 1 and {MAX_IMAGE_SIDE} on each side",
+                self.width, self.height
+            ));
+        }
+        Ok(())
+    }
+
+    /// A camera looking along a named view at the bounding box `(lo, hi)`, framing all of it.
+    pub fn fit(
+        view: NamedView,
+        bounds: (DVec3, DVec3),
+        orthographic: bool,
+        fovy_deg: f64,
+        width: u32,
+        height: u32,
+    ) -> Camera {
+        let (dir, up) = view.direction_and_up();
+        let (center, radius) = bounding_sphere(bounds);
+        let aspect = width as f64 / height as f64;
+        let margin = 1.05;
+        let projection = if orthographic {
+            Projection::Orthographic {
+                height: 2.0 * radius * margin / aspect.min(1.0),
+            }
+        } else {
+            Projection::Perspective { fovy_deg }
+        };
+        let half_fov = {
+            let fy = (fovy_deg / 2.0).to_radians();
+            let fx = (fy.tan() * aspect).atan();
+            fy.min(fx)
+        };
+        let distance = if orthographic {
+            radius * 2.0
+        } else {
+            radius * margin / half_fov.sin()
+        };
+        let eye = center + dir * distance;
+        let mut cam = Camera {
+            eye,
+            target: center,
+            up,
+            projection,
+            near: 0.0,
+            far: 1.0,
+            width,
+            height,
+        };
+        cam.fit_depth_range(bounds);
+        cam
+    }
+
+    /// Sets near and far to enclose the bounding box seen from the current eye, with a margin.
+    /// When the eye is inside the box the near plane is put at a thousandth of the far distance.
+    pub fn fit_depth_range(&mut self, bounds: (DVec3, DVec3)) {
+        let (center, radius) = bounding_sphere(bounds);
+        let forward = self.forward();
+        let along = (center - self.eye).dot(forward);
+        let far = (along + radius * 1.1)
+            .max(radius * 1e-3)
+            .max(f64::MIN_POSITIVE);
+        let near = along - radius * 1.1;
+        self.far = far;
+        self.near = if self.is_perspective() {
+            near.max(far * 1e-3)
+        } else {
+            near
+        };
+    }
+
+    /// The camera of an X3D Viewpoint, with near and far fitted to the bounding box.
+    /// X3D's fieldOfView is the smaller of the two angles; our fovy is the vertical one.
+    pub fn from_viewpoint(
+        vp: &crate::scene::Viewpoint,
+        bounds: (DVec3, DVec3),
+        width: u32,
+        height: u32,
+    ) -> Camera {
+        let rot = if vp.orientation_axis.length_squared() > 0.0 {
+            DQuat::from_axis_angle(vp.orientation_axis.normalize(), vp.orientation_angle)
+        } else {
+            DQuat::IDENTITY
+        };
+        let forward = rot * DVec3::NEG_Z;
+        let up = rot * DVec3::Y;
+        let aspect = width as f64 / height as f64;
+        let fov = vp.field_of_view;
+        let fovy = if aspect >= 1.0 {
+            fov
+        } else {
+            2.0 * ((fov / 2.0).tan() / aspect).atan()
+        };
+        let mut cam = Camera {
+            eye: vp.position,
+            target: vp.position + forward,
+            up,
+            projection: Projection::Perspective {
+                fovy_deg: fovy.to_degrees(),
+            },
+            near: 0.1,
+            far: 100.0,
+            width,
+            height,
+        };
+        cam.fit_depth_range(bounds);
+        cam
+    }
+
+    /// Pixel centre (i, j) in NDC.
+    pub fn pixel_center_ndc(&self, i: u32, j: u32) -> (f64, f64) {
+        (
+            (2 * i + 1) as f64 / self.width as f64 - 1.0,
+            1.0 - (2 * j + 1) as f64 / self.height as f64,
+        )
+    }
+
+    /// The world-space ray through an NDC point: origin on the near plane and unit direction.
+    pub fn ray_through_ndc(&self, x: f64, y: f64) -> (DVec3, DVec3) {
+        let inv = self.view_projection().inverse();
+        let a = inv.project_point3(DVec3::new(x, y, -1.0));
+        let b = inv.project_point3(DVec3::new(x, y, 1.0));
+        (a, (b - a).normalize())
+    }
+}
+
+/// A camera as the user asked for it: every part optional, resolved against a scene.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CameraSpec {
+    pub cam_file: Option<CamFile>,
+    pub view: Option<NamedView>,
+    pub eye: Option<DVec3>,
+    pub target: Option<DVec3>,
+    pub up: Option<DVec3>,
+    pub fovy_deg: Option<f64>,
+    pub ortho_height: Option<f64>,
+    pub near: Option<f64>,
+    pub far: Option<f64>,
+    pub size: Option<(u32, u32)>,
+}
+
+/// Image size when none is given.
+pub const DEFAULT_SIZE: (u32, u32) = (1024, 1024);
+
+impl CameraSpec {
+    /// The camera, in this order of precedence: a camera file; a named view fitted to the scene;
+    /// an explicit eye/target; the scene's own viewpoint; the iso view fitted to the scene. Then
+    /// explicit eye, target, up, projection, near and far override; near and far not given are
+    /// fitted to the scene's bounds from the final eye.
+    pub fn resolve(
+        &self,
+        bounds: (DVec3, DVec3),
+        viewpoint: Option<&crate::scene::Viewpoint>,
+    ) -> Result<Camera, Error> {
+        let (w, h) = self
+            .size
+            .or(self.cam_file.map(|c| c.size))
+            .unwrap_or(DEFAULT_SIZE);
+        let fovy = self.fovy_deg.unwrap_or(DEFAULT_FOVY_DEG);
+        let ortho = self.ortho_height.is_some();
+        let explicit_pose = self.eye.is_some() || self.target.is_some();
+        let mut cam = if let Some(file) = &self.cam_file {
+            let mut c = file.camera(ortho);
+            c.width = w;
+            c.height = h;
+            c
+        } else if let Some(view) = self.view {
+            Camera::fit(view, bounds, ortho, fovy, w, h)
+        } else if let (false, Some(vp)) = (explicit_pose, viewpoint) {
+            Camera::from_viewpoint(vp, bounds, w, h)
+        } else {
+            Camera::fit(NamedView::Iso, bounds, ortho, fovy, w, h)
+        };
+        if let Some(e) = self.eye {
+            cam.eye = e;
+        }
+        if let Some(t) = self.target {
+            cam.target = t;
+        }
+        if let Some(u) = self.up {
+            cam.up = u;
+        }
+        if let Some(f) = self.fovy_deg {
+            cam.projection = Projection::Perspective { fovy_deg: f };
+        }
+        if let Some(hgt) = self.ortho_height {
+            cam.projection = Projection::Orthographic { height: hgt };
+        }
+        let refit = explicit_pose && self.cam_file.is_none()
+            || self.near.is_none() && self.far.is_none() && self.cam_file.is_none();
+        if refit && cam.target != cam.eye {
+            cam.fit_depth_range(bounds);
+        }
+        if let Some(n) = self.near {
+            cam.near = n;
+        }
+        if let Some(f) = self.far {
+            cam.far = f;
+        }
+        cam.validate()?;
+        Ok(cam)
+    }
+}
+
+/// Centre and radius of the sphere around an axis-aligned box (radius never zero).
+pub fn bounding_sphere((lo, hi): (DVec3, DVec3)) -> (DVec3, f64) {
+    let center = (lo + hi) * 0.5;
+    let radius = ((hi - lo).length() * 0.5).max(1e-9 * center.abs().max_element().max(1.0));
+    (center, radius)
+}
+
+/// A camera file as in `../shared/meshes/cams/*.cam`: lines `eye x y z`, `target x y z`,
+/// `up x y z`, `fovy DEG`, `ortho_height H`, `near N`, `far F`, `size W H`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CamFile {
+    pub eye: DVec3,
+    pub target: DVec3,
+    pub up: DVec3,
+    pub fovy_deg: f64,
+    pub ortho_height: Option<f64>,
+    pub near: f64,
+    pub far: f64,
+    pub size: (u32, u32),
+}
+
+impl CamFile {
+    pub fn parse(text: &str, name: &str) -> Result<CamFile, crate::LoadError> {
+        use crate::LoadError;
+        let mut eye = None;
+        let mut target = None;
+        let mut up = None;
+        let mut fovy = None;
+        let mut ortho = None;
+        let mut near = None;
+        let mut far = None;
+        let mut size = None;
+        for (n, line) in text.lines().enumerate() {
+            let ln = n + 1;
+            let mut it = line.split_whitespace();
+            let Some(key) = it.next() else { continue };
+            if key.starts_with('#') {
+                continue;
+            }
+            let vals: Vec<f64> = it
+                .map(|t| {
+                    t.parse::<f64>()
+                        .ok()
+                        .filter(|v| v.is_finite())
+                        .ok_or_else(|| LoadError::line(name, ln, format!("bad number '{t}'")))
+                })
+                .collect::<Result<_, _>>()?;
+            let want = |k: usize| {
+                if vals.len() == k {
+                    Ok(())
+                } else {
+                    Err(LoadError::line(
+                        name,
+                        ln,
+                        format!("'{key}' needs {k} values, found {}", vals.len()),
+                    ))
+                }
+            };
+            match key {
+                "eye" | "target" | "up" => {
+                    want(3)?;
+                    let v = Some(DVec3::new(vals[0], vals[1], vals[2]));
+                    match key {
+                        "eye" => eye = v,
+                        "target" => target = v,
+                        _ => up = v,
+                    }
+                }
+                "fovy" => {
+                    want(1)?;
+                    fovy = Some(vals[0])
+                }
+                "ortho_height" => {
+                    want(1)?;
+                    ortho = Some(vals[0])
+                }
+                "near" => {
+                    want(1)?;
+                    near = Some(vals[0])
+                }
+                "far" => {
+                    want(1)?;
+                    far = Some(vals[0])
+                }
+                "size" => {
+                    want(2)?;
+                    if vals
+                        .iter()
+                        .any(|v| *v < 1.0 || v.fract() != 0.0 || *v > 1e9)
+                    {
+                        return Err(LoadError::line(
+                            name,
+                            ln,
+                            "size must be two positive integers",
+                        ));
+                    }
+                    size = Some((vals[0] as u32, vals[1] as u32))
+                }
+                _ => return Err(LoadError::line(name, ln, format!("unknown key '{key}'"))),
+            }
+        }
+        let need = |v: Option<DVec3>, k: &str| {
+            v.ok_or_else(|| LoadError::file(name, format!("missing '{k}' line")))
+        };
+        Ok(CamFile {
+            eye: need(eye, "eye")?,
+            target: need(target, "target")?,
+            up: need(up, "up")?,
+            fovy_deg: fovy.unwrap_or(DEFAULT_FOVY_DEG),
+            ortho_height: ortho,
+            near: near.ok_or_else(|| LoadError::file(name, "missing 'near' line"))?,
+            far: far.ok_or_else(|| LoadError::file(name, "missing 'far' line"))?,
+            size: size.unwrap_or((1024, 1024)),
+        })
+    }
+
+    pub fn camera(&self, orthographic: bool) -> Camera {
+        let projection = match (orthographic, self.ortho_height) {
+            (true, Some(h)) => Projection::Orthographic { height: h },
+            _ => Projection::Perspective {
+                fovy_deg: self.fovy_deg,
+            },
+        };
+        Camera {
+            eye: self.eye,
+            target: self.target,
+            up: self.up,
+            projection,
+            near: self.near,
+            far: self.far,
+            width: self.size.0,
+            height: self.size.1,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn seed_depths_follow_gl_perspective() {
+        // Seed 002: eye at z=8 looking down -z, near 5, far 10: z=0 maps to NDC 0.5, z=-1 to 7/9.
+        let cam = Camera {
+            eye: DVec3::new(0., 0., 8.),
+            target: DVec3::ZERO,
+            up: DVec3::Y,
+            projection: Projection::Perspective { fovy_deg: 45.0 },
+            near: 5.0,
+            far: 10.0,
+            width: 12,
+            height: 10,
+        };
+        let m = cam.view_projection();
+        let z0 = m.project_point3(DVec3::new(1., 0., 0.)).z;
+        let z1 = m.project_point3(DVec3::new(-1., 0., -1.)).z;
+        assert!((z0 - 0.5).abs() < 1e-12);
+        assert!((z1 - 7.0 / 9.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn fitted_views_see_the_whole_box() {
+        let b = (DVec3::new(-1., -2., -3.), DVec3::new(4., 5., 6.));
+        for view in [
+            NamedView::Front,
+            NamedView::Back,
+            NamedView::Top,
+            NamedView::Bottom,
+            NamedView::Left,
+            NamedView::Right,
+            NamedView::Iso,
+        ] {
+            for ortho in [false, true] {
+                let cam = Camera::fit(view, b, ortho, DEFAULT_FOVY_DEG, 300, 200);
+                cam.validate().unwrap();
+                let m = cam.view_projection();
+                for k in 0..8 {
+                    let p = DVec3::new(
+                        if k & 1 == 0 { b.0.x } else { b.1.x },
+                        if k & 2 == 0 { b.0.y } else { b.1.y },
+                        if k & 4 == 0 { b.0.z } else { b.1.z },
+                    );
+                    let q = m.project_point3(p);
+                    assert!(
+                        q.abs().max_element() <= 1.0,
+                        "{view:?} ortho={ortho}: corner {p} at NDC {q}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn viewpoint_fov_is_the_smaller_angle() {
+        let vp = crate::scene::Viewpoint {
+            position: DVec3::new(0., 0., 10.),
+            orientation_axis: DVec3::Z,
+            orientation_angle: 0.0,
+            field_of_view: std::f64::consts::FRAC_PI_4,
+        };
+        let b = (DVec3::splat(-1.), DVec3::splat(1.));
+        let wide = Camera::from_viewpoint(&vp, b, 200, 100);
+        let tall = Camera::from_viewpoint(&vp, b, 100, 200);
+        let Projection::Perspective { fovy_deg: w } = wide.projection else {
+            panic!()
+        };
+        let Projection::Perspective { fovy_deg: t } = tall.projection else {
+            panic!()
+        };
+        assert!((w - 45.0).abs() < 1e-9);
+        // Tall image: the horizontal angle is 45 degrees, so the vertical one is wider.
+        let fx = 2.0 * ((t.to_radians() / 2.0).tan() * 0.5).atan();
+        assert!((fx.to_degrees() - 45.0).abs() < 1e-9);
+        assert_eq!(wide.forward(), DVec3::NEG_Z);
+    }
+
+    #[test]
+    fn cam_file_round_trip() {
+        let text = "eye 1 2 3\ntarget 0 0 0\nup 0 1 0\nfovy 40\northo_height 2.5\nnear 0.1\nfar 10\nsize 640 480\n";
+        let c = CamFile::parse(text, "x.cam").unwrap();
+        assert_eq!(c.size, (640, 480));
+        assert_eq!(
+            c.camera(true).projection,
+            Projection::Orthographic { height: 2.5 }
+        );
+        let e = CamFile::parse("eye 1 2\n", "x.cam").unwrap_err();
+        assert_eq!(e.location, crate::Location::Line(1));
+    }
+}

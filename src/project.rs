@@ -1,0 +1,320 @@
+//! From world-space faces to exact screen polygons: transform, clip, project, snap, cull.
+//!
+//! Invariants of every [`ScreenPoly`] produced:
+//! - its corners lie on the integer grid of [`crate::exact`], inside the guard band and the depth
+//!   range, with no two consecutive corners at the same (x, y);
+//! - its projection has non-zero area and it has a support [`Plane`];
+//! - it was not culled: it lies at least partly inside the view frustum and, if its mesh is
+//!   cullable, it faces the camera.
+//!
+//! Clipping is done in f64 homogeneous clip space before the divide (Sutherland–Hodgman, one
+//! plane at a time), against the near and far planes and a guard band twice the view's width:
+//! a face crossing the near plane is cut there, never dropped. The f64 clip points carry a
+//! relative error of a few ulps, far below the snapping bound they then go through.
+//!
+//! Culling:
+//! - frustum: a face whose corners are all outside one plane of the view frustum is dropped;
+//! - back faces (`CullMode::Auto`): dropped only for meshes that are closed and consistently
+//!   oriented (see [`crate::scene::analysis`]), whose faces are not two-sided, and that the near
+//!   plane does not cut (a cut mesh shows its inside). The facing test is the exact sign of the
+//!   snapped polygon's projected area, so it agrees with every later stage.
+
+use crate::camera::Camera;
+use crate::exact::{GUARD, GridPoint, Plane, twice_signed_area};
+use crate::scene::analysis::SceneAnalysis;
+use crate::scene::{FaceId, Scene};
+use glam::DVec4;
+
+/// When back faces are removed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum CullMode {
+    /// Cull closed, consistently oriented, one-sided meshes the near plane does not cut.
+    #[default]
+    Auto,
+    /// Cull every back face whose material is not two-sided, closed mesh or not.
+    On,
+    /// Never cull back faces.
+    Off,
+}
+
+/// A face on screen. Its corners are `ScreenScene::points[start..start + len]`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ScreenPoly {
+    /// Index into `Scene::faces`.
+    pub face: u32,
+    /// Provenance: the input face id.
+    pub id: FaceId,
+    pub start: u32,
+    pub len: u32,
+    pub plane: Plane,
+    /// Seen from its front (after un-flipping inside-out meshes).
+    pub front: bool,
+}
+
+/// What projection did, counted.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ProjectStats {
+    pub faces: usize,
+    pub frustum_culled: usize,
+    pub clipped: usize,
+    pub backface_culled: usize,
+    /// Faces whose snapped projection has no area (edge-on, or smaller than the grid).
+    pub degenerate_after_snap: usize,
+    /// Meshes whose back faces were culled.
+    pub culled_meshes: usize,
+    /// Closed meshes not culled because the near plane cuts them.
+    pub meshes_cut_by_near: usize,
+    pub visible_polys: usize,
+}
+
+/// All faces of a scene on screen, for one camera.
+#[derive(Clone, Debug, Default)]
+pub struct ScreenScene {
+    pub polys: Vec<ScreenPoly>,
+    pub points: Vec<GridPoint>,
+    pub width: u32,
+    pub height: u32,
+    pub stats: ProjectStats,
+}
+
+impl ScreenScene {
+    #[inline]
+    pub fn corners(&self, p: &ScreenPoly) -> &[GridPoint] {
+        &self.points[p.start as usize..(p.start + p.len) as usize]
+    }
+}
+
+// Outcode bits. The first six are the view frustum (for culling); the guard bits are the
+// guard band (for clipping).
+const NEAR: u16 = 1;
+const FAR: u16 = 2;
+const LEFT: u16 = 4;
+const RIGHT: u16 = 8;
+const BOTTOM: u16 = 16;
+const TOP: u16 = 32;
+const G_LEFT: u16 = 64;
+const G_RIGHT: u16 = 128;
+const G_BOTTOM: u16 = 256;
+const G_TOP: u16 = 512;
+const FRUSTUM: u16 = NEAR | FAR | LEFT | RIGHT | BOTTOM | TOP;
+const CLIP: u16 = NEAR | FAR | G_LEFT | G_RIGHT | G_BOTTOM | G_TOP;
+
+#[inline]
+fn outcode(p: DVec4) -> u16 {
+    let mut c = 0;
+    let w = p.w;
+    if p.z < -w {
+        c |= NEAR;
+    }
+    if p.z > w {
+        c |= FAR;
+    }
+    if p.x < -w {
+        c |= LEFT;
+    }
+    if p.x > w {
+        c |= RIGHT;
+    }
+    if p.y < -w {
+        c |= BOTTOM;
+    }
+    if p.y > w {
+        c |= TOP;
+    }
+    let g = GUARD * w;
+    if p.x < -g {
+        c |= G_LEFT;
+    }
+    if p.x > g {
+        c |= G_RIGHT;
+    }
+    if p.y < -g {
+        c |= G_BOTTOM;
+    }
+    if p.y > g {
+        c |= G_TOP;
+    }
+    c
+}
+
+/// Signed distance-like value of a clip-space point to a clip plane (>= 0 inside).
+#[inline]
+fn plane_value(bit: u16, p: DVec4) -> f64 {
+    match bit {
+        NEAR => p.z + p.w,
+        FAR => p.w - p.z,
+        G_LEFT => p.x + GUARD * p.w,
+        G_RIGHT => GUARD * p.w - p.x,
+        G_BOTTOM => p.y + GUARD * p.w,
+        G_TOP => GUARD * p.w - p.y,
+        _ => unreachable!(),
+    }
+}
+
+/// Sutherland–Hodgman against one plane, in homogeneous coordinates.
+fn clip_polygon(input: &[DVec4], bit: u16, out: &mut Vec<DVec4>) {
+    out.clear();
+    let n = input.len();
+    for k in 0..n {
+        let a = input[k];
+        let b = input[(k + 1) % n];
+        let da = plane_value(bit, a);
+        let db = plane_value(bit, b);
+        if da >= 0.0 {
+            out.push(a);
+        }
+        if (da >= 0.0) != (db >= 0.0) {
+            // Interpolate from the inside point so the same edge clipped from either face gives
+            // the same point.
+            let (p, q, dp, dq) = if da >= 0.0 {
+                (a, b, da, db)
+            } else {
+                (b, a, db, da)
+            };
+            let t = dp / (dp - dq);
+            out.push(p + (q - p) * t);
+        }
+    }
+}
+
+/// Projects, clips, snaps and culls every face of `scene`.
+pub fn project(
+    scene: &Scene,
+    analysis: &SceneAnalysis,
+    camera: &Camera,
+    cull: CullMode,
+) -> ScreenScene {
+    let m = camera.view_projection();
+    let clip: Vec<DVec4> = scene.positions.iter().map(|p| m * p.extend(1.0)).collect();
+    let codes: Vec<u16> = clip.iter().map(|&p| outcode(p)).collect();
+
+    let mut stats = ProjectStats {
+        faces: scene.faces.len(),
+        ..ProjectStats::default()
+    };
+
+    // Which meshes may lose their back faces.
+    let mut mesh_cull: Vec<bool> = analysis.meshes.iter().map(|a| a.cullable()).collect();
+    for (k, mesh) in scene.meshes.iter().enumerate() {
+        if !mesh_cull[k] || cull != CullMode::Auto {
+            continue;
+        }
+        let cut = scene.faces[mesh.faces.clone()].iter().any(|f| {
+            scene
+                .face_corners(f)
+                .iter()
+                .any(|&c| codes[c as usize] & NEAR != 0)
+        });
+        if cut {
+            mesh_cull[k] = false;
+            stats.meshes_cut_by_near += 1;
+        }
+    }
+    let mesh_may_cull = |mesh: usize| match cull {
+        CullMode::Auto => mesh_cull[mesh],
+        CullMode::On => true,
+        CullMode::Off => false,
+    };
+    stats.culled_meshes = (0..scene.meshes.len())
+        .filter(|&k| mesh_may_cull(k))
+        .count();
+
+    let mut polys = Vec::with_capacity(scene.faces.len());
+    let mut points: Vec<GridPoint> = Vec::with_capacity(scene.corners.len());
+    let mut buf_a: Vec<DVec4> = Vec::new();
+    let mut buf_b: Vec<DVec4> = Vec::new();
+
+    for (fi, face) in scene.faces.iter().enumerate() {
+        let corners = scene.face_corners(face);
+        let mut and = u16::MAX;
+        let mut or = 0u16;
+        for &c in corners {
+            let code = codes[c as usize];
+            and &= code;
+            or |= code;
+        }
+        if and & FRUSTUM != 0 {
+            stats.frustum_culled += 1;
+            continue;
+        }
+        let start = points.len();
+        let snap = |p: DVec4| GridPoint::snap(p.x / p.w, p.y / p.w, p.z / p.w);
+        let push = |g: GridPoint, points: &mut Vec<GridPoint>| {
+            if points.len() > start
+                && let Some(last) = points.last()
+                && last.x == g.x
+                && last.y == g.y
+            {
+                return;
+            }
+            points.push(g);
+        };
+        if or & CLIP == 0 {
+            for &c in corners {
+                push(snap(clip[c as usize]), &mut points);
+            }
+        } else {
+            stats.clipped += 1;
+            buf_a.clear();
+            buf_a.extend(corners.iter().map(|&c| clip[c as usize]));
+            for bit in [NEAR, FAR, G_LEFT, G_RIGHT, G_BOTTOM, G_TOP] {
+                if or & bit != 0 {
+                    clip_polygon(&buf_a, bit, &mut buf_b);
+                    std::mem::swap(&mut buf_a, &mut buf_b);
+                }
+            }
+            for &p in &buf_a {
+                push(snap(p), &mut points);
+            }
+        }
+        // Close the ring: the last corner may repeat the first.
+        while points.len() > start + 1 {
+            let (f, l) = (points[start], *points.last().unwrap());
+            if f.x == l.x && f.y == l.y {
+                points.pop();
+            } else {
+                break;
+            }
+        }
+        let poly_pts = &points[start..];
+        let area = if poly_pts.len() >= 3 {
+            twice_signed_area(poly_pts)
+        } else {
+            0
+        };
+        let plane = if area != 0 {
+            Plane::of_polygon(poly_pts)
+        } else {
+            None
+        };
+        let Some(plane) = plane else {
+            stats.degenerate_after_snap += 1;
+            points.truncate(start);
+            continue;
+        };
+        let inside_out = analysis.meshes[face.mesh as usize].inside_out();
+        let front = (area > 0) != inside_out;
+        let two_sided = scene.materials[face.material as usize].two_sided;
+        if !front && !two_sided && mesh_may_cull(face.mesh as usize) {
+            stats.backface_culled += 1;
+            points.truncate(start);
+            continue;
+        }
+        polys.push(ScreenPoly {
+            face: fi as u32,
+            id: face.id,
+            start: start as u32,
+            len: (points.len() - start) as u32,
+            plane,
+            front,
+        });
+    }
+    stats.visible_polys = polys.len();
+    ScreenScene {
+        polys,
+        points,
+        width: camera.width,
+        height: camera.height,
+        stats,
+    }
+}
