@@ -42,6 +42,9 @@ enum Command {
     /// Describe a scene: counts, closedness, bounds, culling, and which stages it needs.
     #[command(after_help = EXAMPLES)]
     Info(InfoArgs),
+    /// Time each stage (load, project + cull, z-buffer) and report triangles per second.
+    #[command(after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024")]
+    Bench(BenchArgs),
 }
 
 #[derive(Args)]
@@ -130,6 +133,24 @@ struct InfoArgs {
     camera: CameraArgs,
 }
 
+#[derive(Args)]
+struct BenchArgs {
+    /// Scene file (omit with --sphere).
+    #[arg(required_unless_present = "sphere")]
+    input: Option<PathBuf>,
+    /// Read the input as this format, whatever its extension.
+    #[arg(long, value_enum)]
+    format: Option<Format>,
+    /// Instead of a file, a generated closed UV sphere of about this many triangles.
+    #[arg(long, value_name = "TRIANGLES", conflicts_with = "input")]
+    sphere: Option<usize>,
+    /// Runs per stage; the median is reported.
+    #[arg(long, default_value_t = 5)]
+    repeat: usize,
+    #[command(flatten)]
+    camera: CameraArgs,
+}
+
 fn parse_vec3(s: &str) -> Result<DVec3, String> {
     let v: Vec<f64> = s
         .split(',')
@@ -179,6 +200,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Render(a) => render(a),
         Command::Info(a) => info(a),
+        Command::Bench(a) => bench(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -299,6 +321,79 @@ fn info(a: InfoArgs) -> sightline::Result<()> {
     let camera = camera_for(&a.camera, &scene)?;
     let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
     print!("{}", describe(&a.input.input, &scene, &camera, &prepared));
+    Ok(())
+}
+
+fn bench(a: BenchArgs) -> sightline::Result<()> {
+    let repeat = a.repeat.max(1);
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let mut load_times = Vec::new();
+    let scene = match (&a.input, a.sphere) {
+        (Some(path), _) => {
+            let mut scene = None;
+            for _ in 0..repeat {
+                let t = Instant::now();
+                scene = Some(load_scene(&InputArgs {
+                    input: path.clone(),
+                    format: a.format,
+                })?);
+                load_times.push(t.elapsed().as_secs_f64());
+            }
+            scene.expect("repeat >= 1")
+        }
+        (None, Some(n)) => scene::primitives::sphere_scene(n),
+        (None, None) => unreachable!("clap requires an input or --sphere"),
+    };
+    let camera = camera_for(&a.camera, &scene)?;
+    let (mut project_times, mut raster_times) = (Vec::new(), Vec::new());
+    let mut last = None;
+    let bar = progress_bar(repeat as u64, "bench");
+    for k in 0..repeat {
+        let t = Instant::now();
+        let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
+        project_times.push(t.elapsed().as_secs_f64());
+        let t = Instant::now();
+        let zb = sightline::raster::zbuffer::render(&prepared.screen, |_| {});
+        raster_times.push(t.elapsed().as_secs_f64());
+        last = Some((prepared, zb));
+        bar.set_position(k as u64 + 1);
+    }
+    bar.finish_and_clear();
+    let (prepared, zb) = last.expect("repeat >= 1");
+    let tris: usize = scene.faces.iter().map(|f| f.len as usize - 2).sum();
+    let (tp, tr) = (median(project_times), median(raster_times));
+    println!(
+        "scene: {} faces ({} triangles), {}x{}, {} runs, medians:",
+        scene.faces.len(),
+        tris,
+        camera.width,
+        camera.height,
+        repeat
+    );
+    if !load_times.is_empty() {
+        let tl = median(load_times);
+        println!("  load             {:9.4} s  {:12.0} triangles/s", tl, tris as f64 / tl);
+    }
+    println!("  project + cull   {:9.4} s  {:12.0} triangles/s", tp, tris as f64 / tp);
+    println!("  z-buffer         {:9.4} s  {:12.0} triangles/s", tr, tris as f64 / tr);
+    println!(
+        "  project + z-buffer {:7.4} s  {:12.0} triangles/s",
+        tp + tr,
+        tris as f64 / (tp + tr)
+    );
+    let st = &prepared.screen.stats;
+    println!(
+        "  on screen {} (back faces culled {}, frustum culled {}), fragments {}, exact fallbacks: edge {} depth {}",
+        st.visible_polys,
+        st.backface_culled,
+        st.frustum_culled,
+        zb.stats.fragments,
+        zb.stats.column_fallbacks,
+        zb.stats.depth_fallbacks
+    );
     Ok(())
 }
 

@@ -1,0 +1,92 @@
+//! Load + project + cull + z-buffer at 1024x1024, on generated spheres of 10k, 100k and 1M
+//! triangles (OBJ text generated in memory, so the load is measured too), and on the meshes of
+//! `../shared/meshes` with their cameras when that directory is present.
+//!
+//! `cargo bench --bench zbuffer`; `cargo bench --bench zbuffer -- sphere` for the spheres only.
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use sightline::camera::{CamFile, Camera, NamedView};
+use sightline::pipeline::render_zbuffer;
+use sightline::project::CullMode;
+use sightline::scene::{Format, Scene, load_bytes, primitives::sphere_scene};
+use std::hint::black_box;
+use std::path::Path;
+use std::time::Duration;
+
+fn to_obj(scene: &Scene) -> Vec<u8> {
+    use std::io::Write;
+    let mut out = Vec::with_capacity(scene.faces.len() * 40);
+    for p in &scene.positions {
+        writeln!(out, "v {} {} {}", p.x, p.y, p.z).unwrap();
+    }
+    for f in &scene.faces {
+        out.extend_from_slice(b"f");
+        for c in scene.face_corners(f) {
+            write!(out, " {}", c + 1).unwrap();
+        }
+        out.push(b'\n');
+    }
+    out
+}
+
+fn spheres(c: &mut Criterion) {
+    let mut g = c.benchmark_group("sphere");
+    g.sample_size(10).measurement_time(Duration::from_secs(8));
+    for n in [10_000usize, 100_000, 1_000_000] {
+        let scene = sphere_scene(n);
+        let obj = to_obj(&scene);
+        let cam = Camera::fit(NamedView::Iso, scene.bounds().unwrap(), false, 40.0, 1024, 1024);
+        g.throughput(Throughput::Elements(scene.faces.len() as u64));
+        g.bench_function(format!("load+zbuffer/{n}"), |b| {
+            b.iter(|| {
+                let s = load_bytes(&obj, Format::Obj, "sphere.obj", None).unwrap();
+                let (p, zb) = render_zbuffer(&s, &cam, CullMode::Auto, |_| {});
+                black_box((p.screen.polys.len(), zb.stats.fragments))
+            })
+        });
+        g.bench_function(format!("zbuffer/{n}"), |b| {
+            b.iter(|| {
+                let (p, zb) = render_zbuffer(&scene, &cam, CullMode::Auto, |_| {});
+                black_box((p.screen.polys.len(), zb.stats.fragments))
+            })
+        });
+    }
+    g.finish();
+}
+
+fn shared_meshes(c: &mut Criterion) {
+    let dir = Path::new("../shared/meshes");
+    if !dir.is_dir() {
+        eprintln!("../shared/meshes is not present: skipping the real-mesh benchmarks");
+        return;
+    }
+    let mut g = c.benchmark_group("mesh");
+    g.sample_size(10).measurement_time(Duration::from_secs(4));
+    let mut names: Vec<_> = std::fs::read_dir(dir.join("cams"))
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .collect();
+    names.sort();
+    for cam_path in names {
+        let stem = cam_path.file_stem().unwrap().to_string_lossy().to_string();
+        let mesh = [dir.join(format!("{stem}.obj")), dir.join(format!("{stem}.obj.gz"))]
+            .into_iter()
+            .find(|p| p.exists());
+        let Some(mesh) = mesh else { continue };
+        let text = std::fs::read_to_string(&cam_path).unwrap();
+        let cam = CamFile::parse(&text, &stem).unwrap().camera(false);
+        let scene = sightline::load(&mesh, None).unwrap();
+        g.throughput(Throughput::Elements(scene.faces.len() as u64));
+        g.bench_function(format!("zbuffer/{stem}"), |b| {
+            b.iter(|| {
+                let (p, zb) = render_zbuffer(&scene, &cam, CullMode::Auto, |_| {});
+                black_box((p.screen.polys.len(), zb.stats.fragments))
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, spheres, shared_meshes);
+criterion_main!(benches);

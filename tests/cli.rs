@@ -1,0 +1,145 @@
+//! The command line as users run it.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn sightline(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sightline"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("sightline-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn decode(bytes: &[u8]) -> image::DynamicImage {
+    image::load_from_memory_with_format(bytes, image::ImageFormat::Png).expect("valid PNG")
+}
+
+#[test]
+fn render_writes_a_png_of_the_requested_size() {
+    let out = tmp("cube.png");
+    let o = sightline(&["render", "fixtures/cube.obj", "-o", out.to_str().unwrap(), "--size", "64x48"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = decode(&std::fs::read(&out).unwrap());
+    assert_eq!((img.width(), img.height()), (64, 48));
+}
+
+#[test]
+fn negative_values_work_with_and_without_equals() {
+    let a = sightline(&["render", "fixtures/cube.obj", "-o", "-", "--size", "32x32", "--eye", "-3,2,4", "--fill", "id"]);
+    let b = sightline(&["render", "fixtures/cube.obj", "-o", "-", "--size", "32x32", "--eye=-3,2,4", "--fill", "id"]);
+    assert!(a.status.success(), "{}", String::from_utf8_lossy(&a.stderr));
+    assert!(b.status.success(), "{}", String::from_utf8_lossy(&b.stderr));
+    assert_eq!(a.stdout, b.stdout);
+    // Some pixel shows the cube.
+    let img = decode(&a.stdout).to_rgb8();
+    assert!(img.pixels().any(|p| p.0 != [0, 0, 0]));
+}
+
+#[test]
+fn output_is_deterministic() {
+    let args = ["render", "fixtures/cube.obj", "-o", "-", "--size", "80x60", "--view", "iso"];
+    let a = sightline(&args);
+    let b = sightline(&args);
+    assert!(a.status.success());
+    assert_eq!(a.stdout, b.stdout, "same input, same bytes");
+}
+
+#[test]
+fn seed_depth_png_through_the_cli() {
+    let out = tmp("seed.png");
+    let depth = tmp("seed_depth.png");
+    let o = sightline(&[
+        "render",
+        "fixtures/seed_two_triangles.x3d",
+        "--near",
+        "5",
+        "--far",
+        "10",
+        "--size",
+        "120x100",
+        "--depth",
+        depth.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let d = decode(&std::fs::read(&depth).unwrap()).to_luma16();
+    let mut values: Vec<u16> = d.pixels().map(|p| p.0[0]).collect();
+    values.sort_unstable();
+    values.dedup();
+    assert_eq!(values, vec![49151, 58253, 65535]);
+}
+
+#[test]
+fn bad_input_names_the_file_exits_nonzero_and_writes_nothing() {
+    let bad = tmp("broken.obj");
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n").unwrap();
+    let out = tmp("never.png");
+    let o = sightline(&["render", bad.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("broken.obj:4"), "names file and line: {err}");
+    assert!(o.stdout.is_empty());
+    assert!(!out.exists(), "no output file for a failed run");
+}
+
+#[test]
+fn missing_file_and_unknown_extension_are_errors_not_panics() {
+    let o = sightline(&["info", "no/such/file.obj"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no/such/file.obj"));
+    let o = sightline(&["info", "README.md"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("unknown file format"));
+}
+
+#[test]
+fn bad_camera_is_an_error() {
+    let o = sightline(&["render", "fixtures/cube.obj", "-o", "-", "--near", "2", "--far", "1"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("near"));
+    let o = sightline(&["render", "fixtures/cube.obj", "-o", "-", "--eye", "1,2"]);
+    assert_eq!(o.status.code(), Some(2), "clap usage error");
+}
+
+#[test]
+fn help_has_examples() {
+    let o = sightline(&["render", "--help"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("Examples:") && text.contains("--eye -1,2,3"));
+}
+
+#[test]
+fn info_reports_closedness_culling_and_stages() {
+    let o = sightline(&["info", "fixtures/cube.obj", "--view", "iso"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("1 closed, 0 open"), "{text}");
+    assert!(text.contains("3 back faces culled"), "iso view of a cube: 3 of 6 faces culled\n{text}");
+    assert!(text.contains("blending (translucency): no"), "{text}");
+    let o = sightline(&["info", "fixtures/seed_transparent.x3d"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("blending (translucency): yes, 1 translucent faces"), "{text}");
+}
+
+#[test]
+fn writes_into_the_target_directory_only() {
+    // The temporary file lives beside the output and is renamed: nothing else is left behind.
+    let dir = tmp("atomic");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("a.png");
+    let o = sightline(&["render", "fixtures/cube.obj", "-o", out.to_str().unwrap(), "--size", "16x16"]);
+    assert!(o.status.success());
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names, vec![std::ffi::OsString::from("a.png")]);
+    assert!(Path::new(&out).exists());
+}
