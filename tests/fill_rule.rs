@@ -1,9 +1,9 @@
 //! The fill rule: polygons tiling a region cover each pixel centre inside it exactly once, with
 //! edges and vertices placed exactly on pixel centres.
 
-mod common;
+mod support;
 
-use common::Rng;
+use support::Rng;
 use glam::DVec3;
 use sightline::camera::{Camera, Projection};
 use sightline::pipeline::render_zbuffer;

@@ -2,9 +2,9 @@
 //! pixel (3x3 neighbourhood of one id). The brute force shares no code with the projection,
 //! clipping, snapping or rasterization it checks.
 
-mod common;
+mod support;
 
-use common::*;
+use support::*;
 use glam::DVec3;
 use sightline::camera::{Camera, NamedView, Projection};
 use sightline::pipeline::render_zbuffer;

@@ -102,37 +102,40 @@ pub fn analyse(scene: &Scene) -> SceneAnalysis {
 
 /// Canonical vertex index per vertex: vertices at exactly the same position share one.
 fn weld(positions: &[DVec3]) -> Vec<u32> {
-    let key = |p: &DVec3| {
-        // +0.0 and -0.0 are the same point.
-        let k = |v: f64| if v == 0.0 { 0u64 } else { v.to_bits() };
-        (k(p.x), k(p.y), k(p.z))
-    };
-    let mut order: Vec<u32> = (0..positions.len() as u32).collect();
-    order.sort_unstable_by_key(|&i| key(&positions[i as usize]));
+    // +0.0 and -0.0 are the same point.
+    let bits = |v: f64| if v == 0.0 { 0u64 } else { v.to_bits() };
+    let mut keyed: Vec<((u64, u64, u64), u32)> = positions
+        .iter()
+        .enumerate()
+        .map(|(i, p)| ((bits(p.x), bits(p.y), bits(p.z)), i as u32))
+        .collect();
+    keyed.sort_unstable();
     let mut canon = vec![0u32; positions.len()];
     let mut rep = 0u32;
-    for (k, &i) in order.iter().enumerate() {
-        if k == 0 || key(&positions[i as usize]) != key(&positions[order[k - 1] as usize]) {
-            rep = i;
+    for k in 0..keyed.len() {
+        if k == 0 || keyed[k].0 != keyed[k - 1].0 {
+            rep = keyed[k].1;
         }
-        canon[i as usize] = rep;
+        canon[keyed[k].1 as usize] = rep;
     }
     canon
 }
 
 fn analyse_mesh(scene: &Scene, faces: &[Face], canon: &[u32]) -> MeshAnalysis {
-    // Each directed edge as (undirected key, direction bit).
-    let mut edges: Vec<(u64, bool)> = Vec::new();
+    // Each directed edge packed as (low vertex, high vertex, direction bit) in one u128, so one
+    // integer sort groups the uses of every undirected edge.
+    let mut packed: Vec<u128> = Vec::with_capacity(scene.corners.len());
     for f in faces {
         let c = scene.face_corners(f);
         for k in 0..c.len() {
             let u = canon[c[k] as usize];
             let v = canon[c[(k + 1) % c.len()] as usize];
             let (lo, hi) = if u < v { (u, v) } else { (v, u) };
-            edges.push(((lo as u64) << 32 | hi as u64, u < v));
+            packed.push((lo as u128) << 65 | (hi as u128) << 1 | (u < v) as u128);
         }
     }
-    edges.sort_unstable();
+    packed.sort_unstable();
+    let edges: Vec<(u128, bool)> = packed.iter().map(|&e| (e >> 1, e & 1 == 1)).collect();
     let (mut boundary, mut nonmanifold, mut inconsistent) = (0, 0, 0);
     let mut k = 0;
     while k < edges.len() {
