@@ -237,6 +237,11 @@ fn open_elements(text: &str, end: usize) -> Vec<(String, usize)> {
         } else {
             // A start tag: find its '>' outside quoted attribute values.
             let tag = name_at(i + 1);
+            if tag.is_empty() {
+                // A stray '<': not a tag.
+                i += 1;
+                continue;
+            }
             let (mut j, mut quote) = (i + 1, None);
             while j < bytes.len() {
                 match (bytes[j], quote) {
