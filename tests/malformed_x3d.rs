@@ -103,6 +103,7 @@ const CASES: &[(&str, &str, usize, &[&str])] = &[
         &["not an X3D scene", "<html>"],
     ),
     ("x3d_empty.x3d", "Scene", 3, &["empty scene"]),
+    ("x3d_no_scene.x3d", "X3D", 2, &["no <Scene>"]),
 ];
 
 #[test]

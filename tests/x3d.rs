@@ -600,3 +600,30 @@ fn encodings_and_doctype() {
     assert_eq!(s.faces.len(), 6);
     assert!(s.stats.warnings.is_empty(), "{:?}", s.stats.warnings);
 }
+
+#[test]
+fn overflowing_transforms_are_refused_or_skipped() {
+    let mut b = SceneBuilder::new("t");
+    let m = b.default_material();
+    let huge = DMat4::from_scale(DVec3::splat(1e308));
+    primitives::add_sphere(&mut b, &huge, 10.0, 8, 4, m);
+    assert_eq!(b.vertex_count(), 0);
+    assert!(b.stats().warnings[0].contains("non-finite"));
+
+    let text = r#"<Scene><Transform scale="1e300 1 1"><Transform scale="1e300 1 1">
+        <Shape><Box/></Shape></Transform></Transform></Scene>"#;
+    let e = load_bytes(text.as_bytes(), Format::X3d, "o.x3d", None).unwrap_err();
+    assert_eq!(
+        e.location,
+        sightline::Location::Element {
+            name: "Transform".into(),
+            line: 1
+        },
+        "{e}"
+    );
+    let text = r#"<Scene><Transform scale="1e300 1 1">
+        <Shape><TriangleSet><Coordinate point="1e10 0 0 0 1 0 0 0 1"/></TriangleSet></Shape>
+        </Transform></Scene>"#;
+    let e = load_bytes(text.as_bytes(), Format::X3d, "o.x3d", None).unwrap_err();
+    assert!(e.message.contains("not finite once transformed"), "{e}");
+}
