@@ -206,7 +206,11 @@ fn c3(p: DVec3) -> Coord3D<f64> {
 /// Exact: are three points collinear? (All three axis-plane projections have zero area.)
 fn collinear(a: DVec3, b: DVec3, c: DVec3) -> bool {
     let o = |(ax, ay): (f64, f64), (bx, by): (f64, f64), (cx, cy): (f64, f64)| {
-        orient2d(Coord { x: ax, y: ay }, Coord { x: bx, y: by }, Coord { x: cx, y: cy })
+        orient2d(
+            Coord { x: ax, y: ay },
+            Coord { x: bx, y: by },
+            Coord { x: cx, y: cy },
+        )
     };
     o((a.x, a.y), (b.x, b.y), (c.x, c.y)) == 0.0
         && o((a.y, a.z), (b.y, b.z), (c.y, c.z)) == 0.0
@@ -351,7 +355,10 @@ mod tests {
             [0., 2., 0.],
         ]);
         let m = b.default_material();
-        assert_eq!(b.add_face(&[0, 1, 2, 3, 4, 5], m), FaceOutcome::Triangulated(4));
+        assert_eq!(
+            b.add_face(&[0, 1, 2, 3, 4, 5], m),
+            FaceOutcome::Triangulated(4)
+        );
         let s = b.finish().unwrap();
         assert_eq!(s.stats.nonplanar_triangulated, 1);
         let mut area = 0.0;
@@ -361,7 +368,10 @@ mod tests {
             assert!(n.z > 0.0, "piece lost the polygon's winding");
             area += n.z / 2.0;
         }
-        assert!((area - 3.0).abs() < 1e-12, "pieces cover the projected L: {area}");
+        assert!(
+            (area - 3.0).abs() < 1e-12,
+            "pieces cover the projected L: {area}"
+        );
     }
 
     #[test]

@@ -42,7 +42,8 @@ pub fn load(path: &Path, format: Option<Format>) -> Result<Scene, LoadError> {
             ));
         }
     };
-    let raw = std::fs::read(path).map_err(|e| LoadError::file(&name, format!("cannot read: {e}")))?;
+    let raw =
+        std::fs::read(path).map_err(|e| LoadError::file(&name, format!("cannot read: {e}")))?;
     let bytes = if raw.starts_with(&[0x1f, 0x8b]) {
         let mut out = Vec::new();
         flate2::read::MultiGzDecoder::new(&raw[..])
