@@ -16,7 +16,7 @@ use sightline::scene::{Format, load_bytes};
 use std::cell::Cell;
 use std::time::Instant;
 
-const DEFAULT_CASES: u32 = 4_000;
+const DEFAULT_CASES: u32 = 100_000;
 
 fn seeds(format: Format) -> Vec<Vec<u8>> {
     let ext = match format {

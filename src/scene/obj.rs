@@ -21,6 +21,10 @@
 //! keyword. A missing or unreadable `.mtl` is a warning, an error inside one is an error naming
 //! that file. With no directory (bytes loaded from memory) `mtllib` is not followed.
 //!
+//! Invalid UTF-8 is an error only where it changes the geometry (a number); in names (`o`,
+//! `usemtl`, `newmtl`) it is replaced, the same way on both sides of a material lookup, and
+//! `mtllib` file names are used as raw bytes on Unix.
+//!
 //! Also holds the small byte-level text helpers the other text loaders (MTL, ASCII STL, ASCII PLY)
 //! share.
 
@@ -207,8 +211,9 @@ impl<'a> Parser<'a> {
             self.corners.truncate(start);
             return Err(self.err(line, format!("face has {n} corners, needs at least 3")));
         }
-        if self.faces.len() >= u32::MAX as usize {
-            return Err(self.err(line, "too many faces (more than 4294967295)"));
+        // Face ids and corner offsets in a scene are u32.
+        if self.faces.len() >= u32::MAX as usize || self.corners.len() > u32::MAX as usize {
+            return Err(self.err(line, "too many faces or face corners for one scene"));
         }
         self.faces.push(FaceRec {
             len: n as u32,

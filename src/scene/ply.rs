@@ -782,6 +782,14 @@ fn read_body<B: Body>(h: &Header, body: &mut B, name: &str) -> Result<Data, Load
                         ),
                     ));
                 }
+                if d.corners.len() > u32::MAX as usize {
+                    // Corner offsets in a scene are u32.
+                    return Err(LoadError::new(
+                        name,
+                        body.location(),
+                        "too many face corners for one scene",
+                    ));
+                }
                 d.face_lens.push(n as u32);
             }
         }

@@ -70,6 +70,14 @@ fn binary(bytes: &[u8], name: &str) -> Result<Scene, LoadError> {
             ),
         ));
     }
+    if 3 * count as u64 > u32::MAX as u64 {
+        // Corner indices in a scene are u32.
+        return Err(LoadError::byte(
+            name,
+            80,
+            format!("{count} triangles are more than a scene can hold"),
+        ));
+    }
     let mut b = SceneBuilder::new(name);
     if len > needed {
         b.warn(format!(
@@ -318,7 +326,7 @@ impl<'a> Ascii<'a> {
             ));
         }
         self.expect_keyword("endfacet")?;
-        if self.b.next_face_id() == u32::MAX {
+        if self.b.next_face_id() >= u32::MAX / 3 {
             return Err(self.err(facet_line, "too many facets"));
         }
         self.b.add_face(&idx, self.material);
