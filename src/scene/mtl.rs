@@ -1,1 +1,254 @@
-//! MTL material libraries for OBJ (not yet written).
+//! MTL material libraries for OBJ.
+//!
+//! Guarantees of the returned materials: every colour component and the transparency are finite
+//! and in [0, 1] (values outside are clamped, with a warning naming the file and line).
+//!
+//! Read: `newmtl NAME`, `Kd r [g b]` (diffuse), `Ke r [g b]` (emissive), `d x` (transparency
+//! 1 - x, `-halo` accepted and ignored) and `Tr x` (transparency x); when a material has both `d`
+//! and `Tr` the later statement wins. Other standard statements (`Ka`, `Ks`, `Ns`, `illum`,
+//! `map_*`, ...) are ignored silently since they do not change what a face looks like here;
+//! unknown ones get one warning per keyword. `Kd spectral` / `Kd xyz` get a warning and are
+//! ignored. Errors (bad or non-finite numbers, wrong value counts) name the `.mtl` file and line.
+
+use super::Material;
+use super::obj::{Tokens, lossy, next_line, parse_f64, show, strip_comment};
+use crate::error::LoadError;
+
+/// Parses a material library. `file` names it in errors and warnings.
+pub(super) fn parse(
+    bytes: &[u8],
+    file: &str,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<Material>, LoadError> {
+    let mut out: Vec<Material> = Vec::new();
+    let mut unknown_seen: Vec<Vec<u8>> = Vec::new();
+    let mut warned_orphan = false;
+    let mut pos = 0;
+    let mut line = 0;
+    while pos < bytes.len() {
+        let (raw, next) = next_line(bytes, pos);
+        pos = next;
+        line += 1;
+        let mut toks = Tokens::new(strip_comment(raw));
+        let Some(kw) = toks.next() else { continue };
+        if kw == b"newmtl" {
+            let name = lossy(toks.rest()).into_owned();
+            if name.is_empty() {
+                return Err(LoadError::line(file, line, "newmtl without a name"));
+            }
+            out.push(Material {
+                name,
+                ..Material::default()
+            });
+            continue;
+        }
+        let known = matches!(kw, b"Kd" | b"Ke" | b"d" | b"Tr");
+        let ignored = matches!(
+            kw,
+            b"Ka"
+                | b"Ks"
+                | b"Ns"
+                | b"Ni"
+                | b"illum"
+                | b"Tf"
+                | b"sharpness"
+                | b"bump"
+                | b"disp"
+                | b"decal"
+                | b"refl"
+                | b"norm"
+                | b"Pr"
+                | b"Pm"
+                | b"Ps"
+                | b"Pc"
+                | b"Pcr"
+                | b"aniso"
+                | b"anisor"
+        ) || kw.starts_with(b"map_");
+        if !known {
+            if !ignored && !unknown_seen.iter().any(|k| k == kw) {
+                unknown_seen.push(kw.to_vec());
+                warnings.push(format!(
+                    "{file}:{line}: unsupported statement '{}' ignored (reported once)",
+                    show(kw)
+                ));
+            }
+            continue;
+        }
+        let Some(m) = out.last_mut() else {
+            if !warned_orphan {
+                warned_orphan = true;
+                warnings.push(format!(
+                    "{file}:{line}: '{}' before any newmtl ignored",
+                    show(kw)
+                ));
+            }
+            continue;
+        };
+        match kw {
+            b"Kd" | b"Ke" => {
+                let what = if kw == b"Kd" { "Kd" } else { "Ke" };
+                if let Some(first) = toks.clone().next()
+                    && (first == b"spectral" || first == b"xyz")
+                {
+                    warnings.push(format!(
+                        "{file}:{line}: '{what} {}' is not supported; ignored",
+                        show(first)
+                    ));
+                    continue;
+                }
+                let vals = numbers::<3>(toks, file, line, what)?;
+                let rgb = match vals {
+                    (1, [r, ..]) => [r, r, r],
+                    (3, v) => v,
+                    (n, _) => {
+                        return Err(LoadError::line(
+                            file,
+                            line,
+                            format!("{what} needs 1 or 3 values, found {n}"),
+                        ));
+                    }
+                };
+                let mut c = [0.0; 3];
+                for (dst, v) in c.iter_mut().zip(rgb) {
+                    *dst = clamp01(v, what, file, line, warnings);
+                }
+                if kw == b"Kd" {
+                    m.diffuse = c;
+                } else {
+                    m.emissive = c;
+                }
+            }
+            _ => {
+                let is_d = kw == b"d";
+                let what = if is_d { "d" } else { "Tr" };
+                let mut rest = toks.clone();
+                if is_d && rest.next() == Some(&b"-halo"[..]) {
+                    toks = rest;
+                }
+                let (n, [x, ..]) = numbers::<1>(toks, file, line, what)?;
+                if n != 1 {
+                    return Err(LoadError::line(
+                        file,
+                        line,
+                        format!("{what} needs 1 value, found {n}"),
+                    ));
+                }
+                let x = clamp01(x, what, file, line, warnings);
+                m.transparency = if is_d { 1.0 - x } else { x };
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Reads up to `N` finite numbers; returns how many tokens there were (more than `N` is reported
+/// as `N + 1`) and the values.
+fn numbers<const N: usize>(
+    toks: Tokens,
+    file: &str,
+    line: usize,
+    what: &str,
+) -> Result<(usize, [f64; N]), LoadError> {
+    let mut vals = [0.0; N];
+    let mut n = 0;
+    for t in toks {
+        if n == N {
+            return Ok((N + 1, vals));
+        }
+        let x = match parse_f64(t) {
+            Some(x) if x.is_finite() => x,
+            Some(_) => {
+                return Err(LoadError::line(
+                    file,
+                    line,
+                    format!("{what} value '{}' is not finite", show(t)),
+                ));
+            }
+            None => {
+                return Err(LoadError::line(
+                    file,
+                    line,
+                    format!("bad number '{}' in {what}", show(t)),
+                ));
+            }
+        };
+        vals[n] = x;
+        n += 1;
+    }
+    Ok((n, vals))
+}
+
+fn clamp01(x: f64, what: &str, file: &str, line: usize, warnings: &mut Vec<String>) -> f64 {
+    if (0.0..=1.0).contains(&x) {
+        x
+    } else {
+        let c = x.clamp(0.0, 1.0);
+        warnings.push(format!(
+            "{file}:{line}: {what} value {x} outside [0, 1], clamped to {c}"
+        ));
+        c
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error::Location;
+
+    fn parse_str(s: &str) -> (Result<Vec<Material>, LoadError>, Vec<String>) {
+        let mut w = Vec::new();
+        let r = parse(s.as_bytes(), "t.mtl", &mut w);
+        (r, w)
+    }
+
+    #[test]
+    fn reads_colours_and_transparency() {
+        let (m, w) = parse_str(
+            "# lib\nnewmtl red\nKd 1 0 0\nKa 0.1 0.1 0.1\nd 0.75\n\nnewmtl glow\r\nKd 0.5\nKe 0 1 0\nd 0.2\nTr 0.3\nnewmtl halo\nd -halo 0.4\n",
+        );
+        let m = m.unwrap();
+        assert!(w.is_empty(), "{w:?}");
+        assert_eq!(m.len(), 3);
+        assert_eq!(m[0].name, "red");
+        assert_eq!(m[0].diffuse, [1.0, 0.0, 0.0]);
+        assert_eq!(m[0].transparency, 0.25);
+        assert_eq!(m[1].diffuse, [0.5; 3]);
+        assert_eq!(m[1].emissive, [0.0, 1.0, 0.0]);
+        assert_eq!(m[1].transparency, 0.3, "the later of d and Tr wins");
+        assert!((m[2].transparency - 0.6).abs() < 1e-15);
+    }
+
+    #[test]
+    fn out_of_range_is_clamped_with_a_warning() {
+        let (m, w) = parse_str("newmtl a\nKd 2 -1 0.5\nTr 1.5\n");
+        let m = m.unwrap();
+        assert_eq!(m[0].diffuse, [1.0, 0.0, 0.5]);
+        assert_eq!(m[0].transparency, 1.0);
+        assert_eq!(w.len(), 3);
+        assert!(w[0].starts_with("t.mtl:2:"), "{w:?}");
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        for (src, line, needle) in [
+            ("newmtl a\nKd 1 x 0\n", 2, "bad number"),
+            ("newmtl a\n\nKd 1 0\n", 3, "1 or 3 values"),
+            ("newmtl a\nd nan\n", 2, "not finite"),
+            ("newmtl a\nTr 0.1 0.2\n", 2, "1 value"),
+            ("newmtl\n", 1, "without a name"),
+        ] {
+            let e = parse_str(src).0.unwrap_err();
+            assert_eq!(e.file, "t.mtl");
+            assert_eq!(e.location, Location::Line(line), "{src:?}: {e}");
+            assert!(e.message.contains(needle), "{src:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn unknown_and_orphan_statements_warn() {
+        let (m, w) = parse_str("Kd 1 1 1\nnewmtl a\nfoo 1\nfoo 2\nKd spectral x.rfl\n");
+        assert_eq!(m.unwrap()[0].diffuse, [0.8; 3]);
+        assert_eq!(w.len(), 3, "{w:?}");
+    }
+}

@@ -1,13 +1,683 @@
-//! OBJ loader (not yet written).
+//! Wavefront OBJ loader, with its own parser so that every error names the line.
+//!
+//! Guarantees of a scene returned from here (besides the [`Scene`] invariants kept by the
+//! builder): every corner index is in range, every coordinate is finite, faces keep the file's
+//! winding, and face ids follow the order of the `f` statements.
+//!
+//! Read: `v x y z [w]` (w and trailing vertex colours ignored), `f` with any number of corners in
+//! the forms `i`, `i/t`, `i//n`, `i/t/n` (texture and normal indices are checked for syntax only),
+//! negative indices (relative to the vertices defined before that line), `o`, `usemtl`, `mtllib`,
+//! `#` comments, `\r\n` endings and trailing-backslash line continuations.
+//!
+//! `o NAME` starts a new mesh. `g NAME` does not: groups are labels only, because closedness and
+//! orientation are decided per mesh and exporters freely split one closed solid into several
+//! groups (by material, by smoothing, ...).
+//!
+//! Positive indices may refer to vertices defined later in the file (faces are handed to the
+//! builder only after every vertex is read); such an index that is still out of range at the end
+//! is reported at its own line, but only after the rest of the file parsed without error.
+//!
+//! `vt`, `vn`, `vp`, `s`, `g`, `l` and `p` are ignored; any other statement gets one warning per
+//! keyword. A missing or unreadable `.mtl` is a warning, an error inside one is an error naming
+//! that file. With no directory (bytes loaded from memory) `mtllib` is not followed.
+//!
+//! Invalid UTF-8 is an error only where it changes the geometry (a number); in names (`o`,
+//! `usemtl`, `newmtl`) it is replaced, the same way on both sides of a material lookup, and
+//! `mtllib` file names are used as raw bytes on Unix.
+//!
+//! Also holds the small byte-level text helpers the other text loaders (MTL, ASCII STL, ASCII PLY)
+//! share.
 
-use super::Scene;
+use super::{Material, Scene, SceneBuilder, mtl};
 use crate::error::LoadError;
+use glam::DVec3;
+use std::borrow::Cow;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
 
-pub(super) fn load(
-    bytes: &[u8],
-    name: &str,
-    dir: Option<&std::path::Path>,
-) -> Result<Scene, LoadError> {
-    let _ = (bytes, dir);
-    Err(LoadError::file(name, "OBJ loader not yet written"))
+pub(super) fn load(bytes: &[u8], name: &str, dir: Option<&Path>) -> Result<Scene, LoadError> {
+    let mut parser = Parser::new(name, dir);
+    let mut pos = 0;
+    let mut line_no = 0usize;
+    let mut joined: Vec<u8> = Vec::new();
+    while pos < bytes.len() {
+        let (raw, next) = next_line(bytes, pos);
+        pos = next;
+        line_no += 1;
+        let start_line = line_no;
+        let mut text = strip_comment(raw);
+        if text.last() == Some(&b'\\') {
+            // Continuation: rare, so only this path copies.
+            joined.clear();
+            joined.extend_from_slice(&text[..text.len() - 1]);
+            joined.push(b' ');
+            while pos < bytes.len() {
+                let (raw, next) = next_line(bytes, pos);
+                pos = next;
+                line_no += 1;
+                let t = strip_comment(raw);
+                if let Some(head) = t.strip_suffix(b"\\") {
+                    joined.extend_from_slice(head);
+                    joined.push(b' ');
+                } else {
+                    joined.extend_from_slice(t);
+                    break;
+                }
+            }
+            text = &joined;
+        }
+        parser.statement(text, start_line)?;
+    }
+    parser.finish()
+}
+
+/// A face as read in the first pass: its corners are the next `len` entries of `Parser::corners`.
+struct FaceRec {
+    len: u32,
+    /// Index into `Parser::mat_names`, or `NO_MATERIAL`.
+    slot: u32,
+}
+
+const NO_MATERIAL: u32 = u32::MAX;
+
+struct Parser<'a> {
+    name: &'a str,
+    dir: Option<&'a Path>,
+    builder: SceneBuilder,
+    /// Corner indices (0-based, already resolved) of all faces, face after face.
+    corners: Vec<u32>,
+    faces: Vec<FaceRec>,
+    /// `o` statements: (number of faces before it, object name).
+    objects: Vec<(usize, String)>,
+    /// Material names used by `usemtl`, in order of first use.
+    mat_names: Vec<String>,
+    mat_slots: HashMap<String, u32>,
+    slot: u32,
+    /// Materials read from the `.mtl` files, first definition of a name wins.
+    library: HashMap<String, Material>,
+    /// Positive indices past the vertices defined so far: (line, 1-based index, vertices defined
+    /// before that line). Only entries larger than every earlier one are kept, which is enough to
+    /// find the first out-of-range one at the end.
+    forward: Vec<(usize, u64, usize)>,
+    unknown_seen: Vec<Vec<u8>>,
+    warned_no_dir: bool,
+}
+
+impl<'a> Parser<'a> {
+    fn new(name: &'a str, dir: Option<&'a Path>) -> Self {
+        Parser {
+            name,
+            dir,
+            builder: SceneBuilder::new(name),
+            corners: Vec::new(),
+            faces: Vec::new(),
+            objects: Vec::new(),
+            mat_names: Vec::new(),
+            mat_slots: HashMap::new(),
+            slot: NO_MATERIAL,
+            library: HashMap::new(),
+            forward: Vec::new(),
+            unknown_seen: Vec::new(),
+            warned_no_dir: false,
+        }
+    }
+
+    fn err(&self, line: usize, msg: impl Into<String>) -> LoadError {
+        LoadError::line(self.name, line, msg)
+    }
+
+    fn statement(&mut self, text: &[u8], line: usize) -> Result<(), LoadError> {
+        let mut toks = Tokens::new(text);
+        let Some(kw) = toks.next() else {
+            return Ok(());
+        };
+        match kw {
+            b"v" => self.vertex(toks, line),
+            b"f" => self.face(toks, line),
+            b"o" => {
+                let name = lossy(toks.rest());
+                let name = if name.is_empty() {
+                    format!("object at line {line}")
+                } else {
+                    name.into_owned()
+                };
+                self.objects.push((self.faces.len(), name));
+                Ok(())
+            }
+            b"usemtl" => {
+                let name = lossy(toks.rest());
+                if name.is_empty() {
+                    self.builder.warn(format!(
+                        "{}:{line}: usemtl without a name: default material",
+                        self.name
+                    ));
+                    self.slot = NO_MATERIAL;
+                } else if let Some(&s) = self.mat_slots.get(name.as_ref()) {
+                    self.slot = s;
+                } else {
+                    let s = self.mat_names.len() as u32;
+                    self.mat_names.push(name.clone().into_owned());
+                    self.mat_slots.insert(name.into_owned(), s);
+                    self.slot = s;
+                }
+                Ok(())
+            }
+            b"mtllib" => self.mtllib(toks.rest(), line),
+            b"vt" | b"vn" | b"vp" | b"s" | b"g" | b"l" | b"p" => Ok(()),
+            _ => {
+                if !self.unknown_seen.iter().any(|k| k == kw) {
+                    self.unknown_seen.push(kw.to_vec());
+                    self.builder.warn(format!(
+                        "{}:{line}: unsupported statement '{}' ignored (reported once)",
+                        self.name,
+                        show(kw)
+                    ));
+                }
+                Ok(())
+            }
+        }
+    }
+
+    fn vertex(&mut self, mut toks: Tokens, line: usize) -> Result<(), LoadError> {
+        let mut c = [0.0f64; 3];
+        for (i, slot) in c.iter_mut().enumerate() {
+            let Some(t) = toks.next() else {
+                return Err(self.err(line, format!("vertex has {i} coordinates, needs 3")));
+            };
+            *slot = parse_coord(t).map_err(|m| self.err(line, m))?;
+        }
+        // Anything after z (w, or r g b colours) is ignored.
+        if self.builder.vertex_count() >= u32::MAX as usize {
+            return Err(self.err(line, "too many vertices (more than 4294967295)"));
+        }
+        self.builder.add_vertex(DVec3::from_array(c));
+        Ok(())
+    }
+
+    fn face(&mut self, toks: Tokens, line: usize) -> Result<(), LoadError> {
+        let defined = self.builder.vertex_count();
+        let start = self.corners.len();
+        for t in toks {
+            match self.corner(t, line, defined) {
+                Ok(v) => self.corners.push(v),
+                Err(e) => {
+                    self.corners.truncate(start);
+                    return Err(e);
+                }
+            }
+        }
+        let n = self.corners.len() - start;
+        if n < 3 {
+            self.corners.truncate(start);
+            return Err(self.err(line, format!("face has {n} corners, needs at least 3")));
+        }
+        // Face ids and corner offsets in a scene are u32.
+        if self.faces.len() >= u32::MAX as usize || self.corners.len() > u32::MAX as usize {
+            return Err(self.err(line, "too many faces or face corners for one scene"));
+        }
+        self.faces.push(FaceRec {
+            len: n as u32,
+            slot: self.slot,
+        });
+        Ok(())
+    }
+
+    /// Resolves one face corner to a 0-based vertex index (range-checked now for negative
+    /// indices, at the end for positive ones past the vertices defined so far).
+    fn corner(&mut self, t: &[u8], line: usize, defined: usize) -> Result<u32, LoadError> {
+        let mut parts = t.split(|&b| b == b'/');
+        let v = parts.next().unwrap_or(&[]);
+        let tex = parts.next();
+        let nor = parts.next();
+        if parts.next().is_some()
+            || tex.is_some_and(|p| !p.is_empty() && parse_int(p).is_none())
+            || nor.is_some_and(|p| !p.is_empty() && parse_int(p).is_none())
+        {
+            return Err(self.err(
+                line,
+                format!(
+                    "bad face corner '{}' (expected v, v/t, v//n or v/t/n)",
+                    show(t)
+                ),
+            ));
+        }
+        let Some(i) = parse_int(v) else {
+            return Err(self.err(line, format!("bad vertex index '{}'", show(t))));
+        };
+        if i == 0 {
+            return Err(self.err(line, "vertex index 0 (OBJ indices start at 1)"));
+        }
+        if i < 0 {
+            let abs = i.unsigned_abs();
+            if abs > defined as u64 {
+                return Err(self.err(
+                    line,
+                    format!(
+                        "vertex index {i} out of range: only {defined} vertices are defined before this line"
+                    ),
+                ));
+            }
+            return Ok((defined as u64 - abs) as u32);
+        }
+        let i = i as u64;
+        if i > u32::MAX as u64 {
+            return Err(self.err(
+                line,
+                format!(
+                    "vertex index {i} out of range: {defined} vertices are defined before this line"
+                ),
+            ));
+        }
+        if i > defined as u64 && self.forward.last().is_none_or(|&(_, m, _)| i > m) {
+            self.forward.push((line, i, defined));
+        }
+        Ok((i - 1) as u32)
+    }
+
+    fn mtllib(&mut self, rest: &[u8], line: usize) -> Result<(), LoadError> {
+        let Some(dir) = self.dir else {
+            if !self.warned_no_dir {
+                self.warned_no_dir = true;
+                self.builder.warn(format!(
+                    "{}:{line}: mtllib not followed (no directory to look in)",
+                    self.name
+                ));
+            }
+            return Ok(());
+        };
+        if rest.is_empty() {
+            self.builder
+                .warn(format!("{}:{line}: mtllib without a file name", self.name));
+            return Ok(());
+        }
+        // The statement lists files separated by spaces, but some exporters write one name
+        // containing spaces: prefer the whole rest of the line when such a file exists.
+        let whole = dir.join(path_from_bytes(rest));
+        let paths: Vec<PathBuf> = if whole.is_file() {
+            vec![whole]
+        } else {
+            Tokens::new(rest)
+                .map(|t| dir.join(path_from_bytes(t)))
+                .collect()
+        };
+        for path in paths {
+            let shown = path.display().to_string();
+            let bytes = match std::fs::read(&path) {
+                Ok(b) => b,
+                Err(e) => {
+                    self.builder.warn(format!(
+                        "{}:{line}: material library {shown} not read ({e}); its materials are replaced by the default",
+                        self.name
+                    ));
+                    continue;
+                }
+            };
+            let mut warnings = Vec::new();
+            let materials = mtl::parse(&bytes, &shown, &mut warnings)?;
+            for w in warnings {
+                self.builder.warn(w);
+            }
+            for m in materials {
+                if self.library.contains_key(&m.name) {
+                    self.builder.warn(format!(
+                        "{shown}: material '{}' defined again; the first definition is used",
+                        m.name
+                    ));
+                } else {
+                    self.library.insert(m.name.clone(), m);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn finish(self) -> Result<Scene, LoadError> {
+        let total = self.builder.vertex_count() as u64;
+        if let Some(&(line, i, defined)) = self.forward.iter().find(|f| f.1 > total) {
+            return Err(self.err(
+                line,
+                format!(
+                    "vertex index {i} out of range: the file has {total} vertices ({defined} defined before this line)"
+                ),
+            ));
+        }
+
+        let mut b = self.builder;
+        // Resolve material names to scene materials, in order of first use.
+        let mut slot_material = Vec::with_capacity(self.mat_names.len());
+        for name in &self.mat_names {
+            match self.library.get(name) {
+                Some(m) => slot_material.push(b.add_material(m.clone())),
+                None => {
+                    b.warn(format!(
+                        "{}: material '{name}' is not defined in any material library; default material used",
+                        self.name
+                    ));
+                    slot_material.push(b.default_material());
+                }
+            }
+        }
+
+        b.begin_mesh(file_label(self.name));
+        let mut objects = self.objects.into_iter().peekable();
+        let mut start = 0usize;
+        let mut default = None;
+        for (k, f) in self.faces.iter().enumerate() {
+            while let Some((_, name)) = objects.next_if(|(at, _)| *at <= k) {
+                b.begin_mesh(name);
+            }
+            let end = start + f.len as usize;
+            let material = match slot_material.get(f.slot as usize) {
+                Some(&m) => m,
+                None => *default.get_or_insert_with(|| b.default_material()),
+            };
+            if let Some(c) = self.corners.get(start..end) {
+                b.add_face(c, material);
+            }
+            start = end;
+        }
+        let faces = self.faces.len();
+        let name = self.name;
+        b.finish().ok_or_else(|| {
+            if faces == 0 {
+                LoadError::file(name, "empty scene: no faces")
+            } else {
+                LoadError::file(
+                    name,
+                    format!("empty scene: all {faces} faces are degenerate"),
+                )
+            }
+        })
+    }
+}
+
+// ---- Text helpers shared by the text loaders ----
+
+/// The physical line starting at `pos` (without its `\n` and a trailing `\r`) and the position
+/// after it.
+pub(super) fn next_line(bytes: &[u8], pos: usize) -> (&[u8], usize) {
+    let rest = bytes.get(pos..).unwrap_or(&[]);
+    let (line, next) = match rest.iter().position(|&b| b == b'\n') {
+        Some(i) => (&rest[..i], pos + i + 1),
+        None => (rest, bytes.len()),
+    };
+    (line.strip_suffix(b"\r").unwrap_or(line), next)
+}
+
+/// The part of a line before a `#` comment, with trailing whitespace removed.
+pub(super) fn strip_comment(line: &[u8]) -> &[u8] {
+    let line = match line.iter().position(|&b| b == b'#') {
+        Some(i) => &line[..i],
+        None => line,
+    };
+    trim(line)
+}
+
+pub(super) fn trim(s: &[u8]) -> &[u8] {
+    s.trim_ascii()
+}
+
+/// Whitespace-separated tokens of a line.
+#[derive(Clone)]
+pub(super) struct Tokens<'a> {
+    rest: &'a [u8],
+}
+
+impl<'a> Tokens<'a> {
+    pub(super) fn new(line: &'a [u8]) -> Self {
+        Tokens { rest: line }
+    }
+    /// Everything after the tokens read so far, trimmed.
+    pub(super) fn rest(&self) -> &'a [u8] {
+        trim(self.rest)
+    }
+}
+
+impl<'a> Iterator for Tokens<'a> {
+    type Item = &'a [u8];
+    #[inline]
+    fn next(&mut self) -> Option<&'a [u8]> {
+        let start = self.rest.iter().position(|b| !b.is_ascii_whitespace())?;
+        let s = &self.rest[start..];
+        let end = s
+            .iter()
+            .position(|b| b.is_ascii_whitespace())
+            .unwrap_or(s.len());
+        self.rest = &s[end..];
+        Some(&s[..end])
+    }
+}
+
+/// A decimal float (anything `str::parse::<f64>` accepts, including `nan` and `inf`).
+#[inline]
+pub(super) fn parse_f64(t: &[u8]) -> Option<f64> {
+    std::str::from_utf8(t).ok()?.parse::<f64>().ok()
+}
+
+/// A finite coordinate, or the message saying what is wrong with it.
+pub(super) fn parse_coord(t: &[u8]) -> Result<f64, String> {
+    match parse_f64(t) {
+        None => Err(format!("bad number '{}'", show(t))),
+        Some(x) if !x.is_finite() => Err(format!(
+            "coordinate '{}' is not finite (NaN or infinity)",
+            show(t)
+        )),
+        Some(x) => Ok(x),
+    }
+}
+
+/// A decimal integer with an optional sign; `None` when malformed or beyond i64.
+#[inline]
+pub(super) fn parse_int(t: &[u8]) -> Option<i64> {
+    let (neg, digits) = match t.first()? {
+        b'-' => (true, &t[1..]),
+        b'+' => (false, &t[1..]),
+        _ => (false, t),
+    };
+    if digits.is_empty() {
+        return None;
+    }
+    let mut v: i64 = 0;
+    for &d in digits {
+        if !d.is_ascii_digit() {
+            return None;
+        }
+        v = v.checked_mul(10)?.checked_sub((d - b'0') as i64)?;
+    }
+    // Accumulated negatively so that i64::MIN parses.
+    if neg { Some(v) } else { v.checked_neg() }
+}
+
+/// A token for a message: lossy UTF-8, shortened.
+pub(super) fn show(t: &[u8]) -> String {
+    const MAX: usize = 40;
+    let s = String::from_utf8_lossy(&t[..t.len().min(MAX)]);
+    if t.len() > MAX {
+        format!("{s}...")
+    } else {
+        s.into_owned()
+    }
+}
+
+pub(super) fn lossy(t: &[u8]) -> Cow<'_, str> {
+    String::from_utf8_lossy(t)
+}
+
+/// The last component of a source name, used to name a mesh that the file does not name.
+pub(super) fn file_label(name: &str) -> String {
+    Path::new(name)
+        .file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| name.to_string())
+}
+
+#[cfg(unix)]
+fn path_from_bytes(b: &[u8]) -> PathBuf {
+    use std::os::unix::ffi::OsStrExt;
+    PathBuf::from(std::ffi::OsStr::from_bytes(b))
+}
+
+#[cfg(not(unix))]
+fn path_from_bytes(b: &[u8]) -> PathBuf {
+    PathBuf::from(String::from_utf8_lossy(b).into_owned())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error::Location;
+
+    fn load_str(s: &str) -> Result<Scene, LoadError> {
+        load(s.as_bytes(), "t.obj", None)
+    }
+
+    fn line_of(e: &LoadError) -> usize {
+        match e.location {
+            Location::Line(l) => l,
+            ref other => panic!("expected a line, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn parse_int_edges() {
+        assert_eq!(parse_int(b"12"), Some(12));
+        assert_eq!(parse_int(b"-3"), Some(-3));
+        assert_eq!(parse_int(b"+7"), Some(7));
+        assert_eq!(parse_int(b"-9223372036854775808"), Some(i64::MIN));
+        assert_eq!(parse_int(b"9223372036854775808"), None);
+        assert_eq!(parse_int(b"-"), None);
+        assert_eq!(parse_int(b""), None);
+        assert_eq!(parse_int(b"1.0"), None);
+    }
+
+    #[test]
+    fn tokens_and_rest() {
+        let mut t = Tokens::new(b"  usemtl  my  mat \t");
+        assert_eq!(t.next(), Some(&b"usemtl"[..]));
+        assert_eq!(t.rest(), b"my  mat");
+        assert_eq!(t.next(), Some(&b"my"[..]));
+        assert_eq!(t.next(), Some(&b"mat"[..]));
+        assert_eq!(t.next(), None);
+    }
+
+    #[test]
+    fn corner_forms_and_negative_indices() {
+        let s = load_str(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1 2/1/1 3//1\nv 0 0 1\nf -4 -2 -3\n",
+        )
+        .unwrap();
+        assert_eq!(s.faces.len(), 2);
+        assert_eq!(s.face_corners(&s.faces[0]), &[0, 1, 2]);
+        assert_eq!(s.face_corners(&s.faces[1]), &[0, 2, 1]);
+    }
+
+    #[test]
+    fn forward_references_are_accepted() {
+        let s = load_str("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n").unwrap();
+        assert_eq!(s.faces.len(), 1);
+    }
+
+    #[test]
+    fn forward_reference_out_of_range_names_its_line() {
+        let e = load_str("f 1 2 3\nf 1 2 9\nv 0 0 0\nv 1 0 0\nv 0 1 0\n").unwrap_err();
+        assert_eq!(line_of(&e), 2);
+        assert!(e.message.contains("vertex index 9 out of range"), "{e}");
+        assert!(e.message.contains("3 vertices"), "{e}");
+    }
+
+    #[test]
+    fn crlf_comments_and_continuation() {
+        let s = load_str(
+            "# head\r\nv 0 0 0 # origin\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 \\\r\n 2 \\\n 3\r\nfoo bar\nfoo\n",
+        )
+        .unwrap();
+        assert_eq!(s.faces.len(), 1);
+        assert_eq!(s.stats.warnings.len(), 1, "{:?}", s.stats.warnings);
+        assert!(
+            s.stats.warnings[0].contains(":8:"),
+            "{:?}",
+            s.stats.warnings
+        );
+    }
+
+    #[test]
+    fn line_numbers_count_continued_lines() {
+        let e = load_str("v 0 0 \\\n 0\nv 1 0 0\nv x 0 0\n").unwrap_err();
+        assert_eq!(line_of(&e), 4);
+    }
+
+    #[test]
+    fn vertex_colours_and_w_are_ignored() {
+        let s = load_str("v 0 0 0 1\nv 1 0 0 1 0 0\nv 0 1 0 0.5 0.5 0.5\nf 1 2 3\n").unwrap();
+        assert_eq!(s.positions.len(), 3);
+    }
+
+    #[test]
+    fn errors_name_the_problem() {
+        let cases: &[(&str, usize, &str)] = &[
+            ("v 0 0\n", 1, "2 coordinates"),
+            ("v 0 0 0\nv 1 0 nan\n", 2, "not finite"),
+            ("v 0 0 0\nv 1 0 1e999\n", 2, "not finite"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", 4, "2 corners"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", 4, "index 0"),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n",
+                4,
+                "only 3 vertices",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/x\n",
+                4,
+                "bad face corner",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/1/1/1\n",
+                4,
+                "bad face corner",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 a\n",
+                4,
+                "bad vertex index",
+            ),
+        ];
+        for (src, line, needle) in cases {
+            let e = load_str(src).unwrap_err();
+            assert_eq!(line_of(&e), *line, "{src:?}: {e}");
+            assert!(e.message.contains(needle), "{src:?}: {e}");
+        }
+        let e = load(b"v 0 0 0\nv 1 0 \xff\n", "t.obj", None).unwrap_err();
+        assert_eq!(line_of(&e), 2);
+        assert!(e.message.contains("bad number"), "{e}");
+    }
+
+    #[test]
+    fn objects_start_meshes_groups_do_not() {
+        let s = load_str(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\no a\ng x\nf 1 2 3\ng y\nf 1 3 4\no b\nf 1 2 4\n",
+        )
+        .unwrap();
+        assert_eq!(s.meshes.len(), 2);
+        assert_eq!(s.meshes[0].name, "a");
+        assert_eq!(s.meshes[0].faces, 0..2);
+        assert_eq!(s.meshes[1].name, "b");
+    }
+
+    #[test]
+    fn unknown_material_warns_and_uses_default() {
+        let s = load_str("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl nope\nf 1 2 3\n").unwrap();
+        assert_eq!(
+            s.materials[s.faces[0].material as usize],
+            Material::default()
+        );
+        assert!(s.stats.warnings.iter().any(|w| w.contains("'nope'")));
+    }
+
+    #[test]
+    fn empty_and_all_degenerate() {
+        let e = load_str("# nothing\nv 0 0 0\n").unwrap_err();
+        assert_eq!(e.location, Location::File);
+        let e = load_str("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n").unwrap_err();
+        assert!(e.message.contains("degenerate"), "{e}");
+    }
 }

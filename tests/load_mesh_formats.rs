@@ -1,0 +1,188 @@
+//! Every good fixture loads with the expected counts, materials and ids, and the cube reads the
+//! same in every format.
+
+mod common;
+
+use glam::DVec3;
+use sightline::scene::{Format, Scene, load, load_bytes};
+
+fn fixture(name: &str) -> Scene {
+    let path = common::fixtures().join(name);
+    load(&path, None).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn ids(s: &Scene) -> Vec<u32> {
+    s.faces.iter().map(|f| f.id).collect()
+}
+
+/// The scene's faces fan-split into triangles, each rotated to start at its smallest corner
+/// (orientation kept), sorted: equal for two scenes with the same oriented surface written with the
+/// same quad split.
+fn triangle_set(s: &Scene) -> Vec<[[u64; 3]; 3]> {
+    let key = |p: DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+    let mut out = Vec::new();
+    for f in &s.faces {
+        let p: Vec<_> = s.face_positions(f).map(key).collect();
+        for k in 1..p.len() - 1 {
+            let mut t = [p[0], p[k], p[k + 1]];
+            let m = (0..3).min_by_key(|&i| t[i]).unwrap();
+            t.rotate_left(m);
+            out.push(t);
+        }
+    }
+    out.sort();
+    out
+}
+
+/// Volume by the divergence theorem: positive for a closed, outward-oriented surface.
+fn volume(s: &Scene) -> f64 {
+    s.faces
+        .iter()
+        .map(|f| {
+            let p: Vec<_> = s.face_positions(f).collect();
+            (1..p.len() - 1)
+                .map(|k| p[0].dot(p[k].cross(p[k + 1])) / 6.0)
+                .sum::<f64>()
+        })
+        .sum()
+}
+
+fn cube_checks(s: &Scene, faces: usize) {
+    assert_eq!(s.positions.len(), 8, "{}", s.source);
+    assert_eq!(s.faces.len(), faces, "{}", s.source);
+    assert_eq!(s.meshes.len(), 1, "{}", s.source);
+    assert_eq!(s.bounds(), Some((DVec3::ZERO, DVec3::ONE)));
+    assert!(
+        (volume(s) - 1.0).abs() < 1e-12,
+        "{}: volume {}",
+        s.source,
+        volume(s)
+    );
+}
+
+#[test]
+fn cube_obj_with_materials() {
+    let s = fixture("cube.obj");
+    cube_checks(&s, 6);
+    assert!(s.stats.warnings.is_empty(), "{:?}", s.stats.warnings);
+    assert_eq!(ids(&s), (0..6).collect::<Vec<_>>());
+    assert_eq!(s.meshes[0].name, "cube");
+    let mat = |k: usize| &s.materials[s.faces[k].material as usize];
+    for k in 0..5 {
+        assert_eq!(mat(k).name, "red");
+        assert_eq!(mat(k).diffuse, [1.0, 0.0, 0.0]);
+        assert_eq!(mat(k).transparency, 0.0);
+    }
+    let glass = mat(5);
+    assert_eq!(glass.name, "blue_glass");
+    assert_eq!(glass.diffuse, [0.0, 0.0, 1.0]);
+    assert_eq!(glass.emissive, [0.1, 0.1, 0.1]);
+    assert_eq!(glass.transparency, 0.25, "Tr after d wins");
+    // Quads in file order, corners as written.
+    assert_eq!(s.face_corners(&s.faces[0]), &[0, 3, 2, 1]);
+    assert_eq!(s.face_corners(&s.faces[5]), &[1, 2, 6, 5]);
+}
+
+#[test]
+fn obj_from_memory_does_not_follow_mtllib() {
+    let bytes = std::fs::read(common::fixtures().join("cube.obj")).unwrap();
+    let s = load_bytes(&bytes, Format::Obj, "mem", None).unwrap();
+    assert!(s.materials.iter().all(|m| m.name == "default"));
+    assert!(s.stats.warnings.iter().any(|w| w.contains("mtllib")));
+}
+
+#[test]
+fn cube_stl_ascii_and_binary() {
+    for name in ["cube_ascii.stl", "cube_binary.stl"] {
+        let s = fixture(name);
+        cube_checks(&s, 12);
+        assert_eq!(ids(&s), (0..12).collect::<Vec<_>>(), "{name}");
+        assert!(s.stats.warnings.is_empty(), "{:?}", s.stats.warnings);
+    }
+    assert_eq!(fixture("cube_ascii.stl").meshes[0].name, "cube");
+}
+
+#[test]
+fn stl_welding_shares_vertices() {
+    let s = fixture("cube_binary.stl");
+    // 36 corners over 8 positions; every undirected edge is used by exactly two triangles, in
+    // opposite directions (closed and consistently oriented), which needs shared indices.
+    assert_eq!(s.corners.len(), 36);
+    let mut directed = std::collections::HashMap::new();
+    for f in &s.faces {
+        let c = s.face_corners(f);
+        for k in 0..3 {
+            *directed.entry((c[k], c[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    for (&(a, b), &n) in &directed {
+        assert_eq!(n, 1, "edge {a}->{b} used twice in one direction");
+        assert_eq!(directed.get(&(b, a)), Some(&1), "edge {a}->{b} has no twin");
+    }
+    let mut used: Vec<u32> = s.corners.clone();
+    used.sort();
+    used.dedup();
+    assert_eq!(used, (0..8).collect::<Vec<_>>());
+}
+
+#[test]
+fn cube_ply_all_encodings() {
+    for name in ["cube_ascii.ply", "cube_binary_le.ply", "cube_binary_be.ply"] {
+        let s = fixture(name);
+        cube_checks(&s, 6);
+        assert_eq!(ids(&s), (0..6).collect::<Vec<_>>(), "{name}");
+        assert_eq!(s.meshes[0].name, name);
+        for (k, q) in common::CUBE_QUADS.iter().enumerate() {
+            let want: Vec<u32> = q.iter().map(|&i| i as u32).collect();
+            assert_eq!(s.face_corners(&s.faces[k]), &want[..], "{name}");
+        }
+    }
+}
+
+#[test]
+fn the_cube_is_the_same_in_every_format() {
+    let reference = triangle_set(&fixture("cube.obj"));
+    assert_eq!(reference.len(), 12);
+    for name in [
+        "cube_ascii.stl",
+        "cube_binary.stl",
+        "cube_ascii.ply",
+        "cube_binary_le.ply",
+        "cube_binary_be.ply",
+    ] {
+        assert_eq!(triangle_set(&fixture(name)), reference, "{name}");
+    }
+}
+
+#[test]
+fn tetrahedron_with_negative_indices() {
+    let s = fixture("tetra_neg_indices.obj");
+    assert_eq!(s.positions.len(), 4);
+    assert_eq!(ids(&s), vec![0, 1, 2, 3]);
+    let corners: Vec<&[u32]> = s.faces.iter().map(|f| s.face_corners(f)).collect();
+    assert_eq!(
+        corners,
+        vec![&[0, 2, 1][..], &[0, 1, 3], &[0, 3, 2], &[1, 2, 3]]
+    );
+    assert!((volume(&s) - 1.0 / 6.0).abs() < 1e-15);
+}
+
+#[test]
+fn objects_groups_triangulation_and_degenerates() {
+    let s = fixture("two_objects.obj");
+    assert!(s.stats.warnings.is_empty(), "{:?}", s.stats.warnings);
+    assert_eq!(s.input_faces, 5);
+    assert_eq!(s.stats.nonplanar_triangulated, 1);
+    assert_eq!(s.stats.degenerate_dropped, 1);
+    let names: Vec<&str> = s.meshes.iter().map(|m| m.name.as_str()).collect();
+    assert_eq!(names, vec!["wedge", "flat"], "g does not start a mesh");
+    // The non-planar quad became two triangles sharing id 0; id 2 (degenerate) is missing.
+    assert_eq!(ids(&s), vec![0, 0, 1, 3, 4]);
+    assert_eq!(s.meshes[0].faces, 0..3);
+    assert_eq!(s.meshes[1].faces, 3..5);
+    assert!(s.faces[..2].iter().all(|f| f.len == 3));
+    assert_eq!(s.faces[3].len, 4);
+    // The two pieces cover the quad's projection and keep its (upward) winding.
+    let area: f64 = s.faces[..2].iter().map(|f| s.face_normal(f).z / 2.0).sum();
+    assert!((area - 4.0).abs() < 1e-12, "{area}");
+}

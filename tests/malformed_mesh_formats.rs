@@ -1,0 +1,243 @@
+//! Every malformed fixture in `fixtures/bad` is refused with an error that names the file, the
+//! exact line or byte, and the problem.
+
+mod common;
+
+use sightline::Location;
+use sightline::scene::load;
+
+/// Loads `fixtures/bad/{name}` and checks the error's file (`file`, default the fixture itself),
+/// location, and that its message contains every one of `needles`.
+fn check_in(name: &str, file: Option<&str>, location: Location, needles: &[&str]) {
+    let dir = common::fixtures().join("bad");
+    let path = dir.join(name);
+    let e = match load(&path, None) {
+        Ok(s) => panic!("{name}: loaded {} faces, expected an error", s.faces.len()),
+        Err(e) => e,
+    };
+    let want_file = dir.join(file.unwrap_or(name)).display().to_string();
+    assert_eq!(e.file, want_file, "{name}: {e}");
+    assert_eq!(e.location, location, "{name}: {e}");
+    for n in needles {
+        assert!(e.message.contains(n), "{name}: message lacks {n:?}: {e}");
+    }
+}
+
+fn check(name: &str, location: Location, needles: &[&str]) {
+    check_in(name, None, location, needles)
+}
+
+use Location::{Byte, File, Line};
+
+#[test]
+fn obj_bad_number() {
+    check("obj_bad_number.obj", Line(3), &["bad number", "abc"]);
+}
+
+#[test]
+fn obj_index_out_of_range() {
+    check(
+        "obj_index_out_of_range.obj",
+        Line(6),
+        &["vertex index 7 out of range", "4 vertices"],
+    );
+}
+
+#[test]
+fn obj_negative_index_out_of_range() {
+    check(
+        "obj_negative_out_of_range.obj",
+        Line(5),
+        &["vertex index -4 out of range", "only 3 vertices"],
+    );
+}
+
+#[test]
+fn obj_index_zero() {
+    check("obj_index_zero.obj", Line(5), &["index 0"]);
+}
+
+#[test]
+fn obj_nan() {
+    check("obj_nan.obj", Line(2), &["'nan'", "not finite"]);
+}
+
+#[test]
+fn obj_inf() {
+    check("obj_inf.obj", Line(3), &["'1e999'", "not finite"]);
+}
+
+#[test]
+fn obj_short_face() {
+    check("obj_short_face.obj", Line(5), &["2 corners", "at least 3"]);
+}
+
+#[test]
+fn obj_bad_corner() {
+    check(
+        "obj_bad_corner.obj",
+        Line(5),
+        &["bad face corner", "3/1/2/3"],
+    );
+}
+
+#[test]
+fn obj_empty() {
+    check("obj_empty.obj", File, &["empty scene", "no faces"]);
+}
+
+#[test]
+fn mtl_bad_number_names_the_mtl_file() {
+    check_in(
+        "mtl_bad_number.obj",
+        Some("mtl_bad_number.mtl"),
+        Line(3),
+        &["bad number", "zero", "Kd"],
+    );
+}
+
+#[test]
+fn stl_truncated() {
+    check(
+        "stl_truncated.stl",
+        Byte(334),
+        &[
+            "truncated",
+            "expected 12 triangles (684 bytes), file has 364 bytes",
+        ],
+    );
+}
+
+#[test]
+fn stl_nan_binary() {
+    check(
+        "stl_nan.stl",
+        Byte(184),
+        &["triangle 3 of 12", "not finite"],
+    );
+}
+
+#[test]
+fn stl_ascii_syntax() {
+    check(
+        "stl_ascii_syntax.stl",
+        Line(3),
+        &["expected 'loop'", "'lop'"],
+    );
+}
+
+#[test]
+fn stl_ascii_four_vertices() {
+    check(
+        "stl_ascii_four_vertices.stl",
+        Line(7),
+        &["more than 3 vertices"],
+    );
+}
+
+#[test]
+fn stl_ascii_inf() {
+    check("stl_ascii_inf.stl", Line(12), &["'-inf'", "not finite"]);
+}
+
+#[test]
+fn stl_ascii_unterminated() {
+    check(
+        "stl_ascii_unterminated.stl",
+        Line(5),
+        &["unexpected end of file"],
+    );
+}
+
+#[test]
+fn ply_truncated_binary() {
+    check(
+        "ply_truncated_binary.ply",
+        Byte(595),
+        &["truncated", "face 6 of 6"],
+    );
+}
+
+#[test]
+fn ply_truncated_ascii() {
+    check(
+        "ply_truncated_ascii.ply",
+        Line(14),
+        &[
+            "unexpected end of data",
+            "'face' declares 2 entries, only 1",
+        ],
+    );
+}
+
+#[test]
+fn ply_bad_header() {
+    check(
+        "ply_bad_header.ply",
+        Line(5),
+        &["unknown property type", "'quad'"],
+    );
+}
+
+#[test]
+fn ply_bad_magic() {
+    check("ply_bad_magic.ply", Line(1), &["not a PLY file"]);
+}
+
+#[test]
+fn ply_unsupported_format() {
+    check(
+        "ply_unsupported_format.ply",
+        Line(2),
+        &["unsupported format", "binary_middle_endian"],
+    );
+}
+
+#[test]
+fn ply_no_end_header() {
+    check("ply_no_end_header.ply", Line(8), &["end_header"]);
+}
+
+#[test]
+fn ply_bad_count() {
+    check("ply_bad_count.ply", Line(3), &["bad element count", "'-3'"]);
+}
+
+#[test]
+fn ply_index_out_of_range() {
+    check(
+        "ply_index_out_of_range.ply",
+        Line(15),
+        &["face 2 of 2", "vertex index 4 out of range", "4 vertices"],
+    );
+}
+
+#[test]
+fn ply_nan() {
+    check("ply_nan.ply", Line(12), &["vertex 3 of 3", "not finite"]);
+}
+
+#[test]
+fn ply_no_faces() {
+    check("ply_no_faces.ply", File, &["empty scene", "point cloud"]);
+}
+
+#[test]
+fn ply_huge_count() {
+    // The header claims 4e9 vertices (48 GB); the check against the 100 bytes present fails
+    // before anything is allocated, naming the first vertex that is not there.
+    check(
+        "ply_huge_count.ply",
+        Byte(331),
+        &["4000000000 entries", "only 100 bytes are left"],
+    );
+}
+
+#[test]
+fn every_bad_fixture_has_a_test() {
+    let src = include_str!("malformed_mesh_formats.rs");
+    for entry in std::fs::read_dir(common::fixtures().join("bad")).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        assert!(src.contains(&format!("\"{name}\"")), "{name} is not tested");
+    }
+}
