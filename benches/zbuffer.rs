@@ -35,7 +35,14 @@ fn spheres(c: &mut Criterion) {
     for n in [10_000usize, 100_000, 1_000_000] {
         let scene = sphere_scene(n);
         let obj = to_obj(&scene);
-        let cam = Camera::fit(NamedView::Iso, scene.bounds().unwrap(), false, 40.0, 1024, 1024);
+        let cam = Camera::fit(
+            NamedView::Iso,
+            scene.bounds().unwrap(),
+            false,
+            40.0,
+            1024,
+            1024,
+        );
         g.throughput(Throughput::Elements(scene.faces.len() as u64));
         g.bench_function(format!("load+zbuffer/{n}"), |b| {
             b.iter(|| {
@@ -70,9 +77,12 @@ fn shared_meshes(c: &mut Criterion) {
     names.sort();
     for cam_path in names {
         let stem = cam_path.file_stem().unwrap().to_string_lossy().to_string();
-        let mesh = [dir.join(format!("{stem}.obj")), dir.join(format!("{stem}.obj.gz"))]
-            .into_iter()
-            .find(|p| p.exists());
+        let mesh = [
+            dir.join(format!("{stem}.obj")),
+            dir.join(format!("{stem}.obj.gz")),
+        ]
+        .into_iter()
+        .find(|p| p.exists());
         let Some(mesh) = mesh else { continue };
         let text = std::fs::read_to_string(&cam_path).unwrap();
         let cam = CamFile::parse(&text, &stem).unwrap().camera(false);

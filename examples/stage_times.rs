@@ -7,9 +7,19 @@ use sightline::scene::primitives::sphere_scene;
 use std::time::Instant;
 
 fn main() {
-    let n: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(1_000_000);
+    let n: usize = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(1_000_000);
     let scene = sphere_scene(n);
-    let cam = Camera::fit(NamedView::Iso, scene.bounds().unwrap(), false, 40.0, 1024, 1024);
+    let cam = Camera::fit(
+        NamedView::Iso,
+        scene.bounds().unwrap(),
+        false,
+        40.0,
+        1024,
+        1024,
+    );
     let t = Instant::now();
     let analysis = analyse(&scene);
     let ta = t.elapsed();

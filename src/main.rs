@@ -43,7 +43,9 @@ enum Command {
     #[command(after_help = EXAMPLES)]
     Info(InfoArgs),
     /// Time each stage (load, project + cull, z-buffer) and report triangles per second.
-    #[command(after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024")]
+    #[command(
+        after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024"
+    )]
     Bench(BenchArgs),
 }
 
@@ -226,9 +228,17 @@ fn progress_bar(len: u64, what: &str) -> ProgressBar {
 }
 
 fn load_scene(input: &InputArgs) -> sightline::Result<Scene> {
-    let spinner = progress_bar(1, "loading");
-    let scene = scene::load(&input.input, input.format)?;
+    let spinner = if std::io::stderr().is_terminal() {
+        let s = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+        s.set_message(format!("loading {}", input.input.display()));
+        s.enable_steady_tick(std::time::Duration::from_millis(100));
+        s
+    } else {
+        ProgressBar::hidden()
+    };
+    let scene = scene::load(&input.input, input.format);
     spinner.finish_and_clear();
+    let scene = scene?;
     let name = input.input.display();
     for w in &scene.stats.warnings {
         eprintln!("warning: {name}: {w}");
@@ -375,10 +385,22 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
     );
     if !load_times.is_empty() {
         let tl = median(load_times);
-        println!("  load             {:9.4} s  {:12.0} triangles/s", tl, tris as f64 / tl);
+        println!(
+            "  load             {:9.4} s  {:12.0} triangles/s",
+            tl,
+            tris as f64 / tl
+        );
     }
-    println!("  project + cull   {:9.4} s  {:12.0} triangles/s", tp, tris as f64 / tp);
-    println!("  z-buffer         {:9.4} s  {:12.0} triangles/s", tr, tris as f64 / tr);
+    println!(
+        "  project + cull   {:9.4} s  {:12.0} triangles/s",
+        tp,
+        tris as f64 / tp
+    );
+    println!(
+        "  z-buffer         {:9.4} s  {:12.0} triangles/s",
+        tr,
+        tris as f64 / tr
+    );
     println!(
         "  project + z-buffer {:7.4} s  {:12.0} triangles/s",
         tp + tr,

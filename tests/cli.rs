@@ -23,7 +23,14 @@ fn decode(bytes: &[u8]) -> image::DynamicImage {
 #[test]
 fn render_writes_a_png_of_the_requested_size() {
     let out = tmp("cube.png");
-    let o = sightline(&["render", "fixtures/cube.obj", "-o", out.to_str().unwrap(), "--size", "64x48"]);
+    let o = sightline(&[
+        "render",
+        "fixtures/cube.obj",
+        "-o",
+        out.to_str().unwrap(),
+        "--size",
+        "64x48",
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let img = decode(&std::fs::read(&out).unwrap());
     assert_eq!((img.width(), img.height()), (64, 48));
@@ -31,8 +38,29 @@ fn render_writes_a_png_of_the_requested_size() {
 
 #[test]
 fn negative_values_work_with_and_without_equals() {
-    let a = sightline(&["render", "fixtures/cube.obj", "-o", "-", "--size", "32x32", "--eye", "-3,2,4", "--fill", "id"]);
-    let b = sightline(&["render", "fixtures/cube.obj", "-o", "-", "--size", "32x32", "--eye=-3,2,4", "--fill", "id"]);
+    let a = sightline(&[
+        "render",
+        "fixtures/cube.obj",
+        "-o",
+        "-",
+        "--size",
+        "32x32",
+        "--eye",
+        "-3,2,4",
+        "--fill",
+        "id",
+    ]);
+    let b = sightline(&[
+        "render",
+        "fixtures/cube.obj",
+        "-o",
+        "-",
+        "--size",
+        "32x32",
+        "--eye=-3,2,4",
+        "--fill",
+        "id",
+    ]);
     assert!(a.status.success(), "{}", String::from_utf8_lossy(&a.stderr));
     assert!(b.status.success(), "{}", String::from_utf8_lossy(&b.stderr));
     assert_eq!(a.stdout, b.stdout);
@@ -43,7 +71,16 @@ fn negative_values_work_with_and_without_equals() {
 
 #[test]
 fn output_is_deterministic() {
-    let args = ["render", "fixtures/cube.obj", "-o", "-", "--size", "80x60", "--view", "iso"];
+    let args = [
+        "render",
+        "fixtures/cube.obj",
+        "-o",
+        "-",
+        "--size",
+        "80x60",
+        "--view",
+        "iso",
+    ];
     let a = sightline(&args);
     let b = sightline(&args);
     assert!(a.status.success());
@@ -101,7 +138,16 @@ fn missing_file_and_unknown_extension_are_errors_not_panics() {
 
 #[test]
 fn bad_camera_is_an_error() {
-    let o = sightline(&["render", "fixtures/cube.obj", "-o", "-", "--near", "2", "--far", "1"]);
+    let o = sightline(&[
+        "render",
+        "fixtures/cube.obj",
+        "-o",
+        "-",
+        "--near",
+        "2",
+        "--far",
+        "1",
+    ]);
     assert_eq!(o.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&o.stderr).contains("near"));
     let o = sightline(&["render", "fixtures/cube.obj", "-o", "-", "--eye", "1,2"]);
@@ -121,11 +167,28 @@ fn info_reports_closedness_culling_and_stages() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(text.contains("1 closed, 0 open"), "{text}");
-    assert!(text.contains("3 back faces culled"), "iso view of a cube: 3 of 6 faces culled\n{text}");
+    assert!(
+        text.contains("3 back faces culled"),
+        "iso view of a cube: 3 of 6 faces culled\n{text}"
+    );
+    // cube.obj's right face uses the translucent "blue_glass" material.
+    assert!(
+        text.contains("blending (translucency): yes, 1 translucent faces"),
+        "{text}"
+    );
+    let o = sightline(&["info", "fixtures/seed_two_triangles.x3d"]);
+    let text = String::from_utf8_lossy(&o.stdout);
     assert!(text.contains("blending (translucency): no"), "{text}");
+    assert!(
+        text.contains("2 open"),
+        "single triangles are open meshes: {text}"
+    );
     let o = sightline(&["info", "fixtures/seed_transparent.x3d"]);
     let text = String::from_utf8_lossy(&o.stdout);
-    assert!(text.contains("blending (translucency): yes, 1 translucent faces"), "{text}");
+    assert!(
+        text.contains("blending (translucency): yes, 1 translucent faces"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -134,7 +197,14 @@ fn writes_into_the_target_directory_only() {
     let dir = tmp("atomic");
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("a.png");
-    let o = sightline(&["render", "fixtures/cube.obj", "-o", out.to_str().unwrap(), "--size", "16x16"]);
+    let o = sightline(&[
+        "render",
+        "fixtures/cube.obj",
+        "-o",
+        out.to_str().unwrap(),
+        "--size",
+        "16x16",
+    ]);
     assert!(o.status.success());
     let names: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()

@@ -3,13 +3,13 @@
 
 mod support;
 
-use support::Rng;
 use glam::DVec3;
 use sightline::camera::{Camera, Projection};
 use sightline::pipeline::render_zbuffer;
 use sightline::project::CullMode;
 use sightline::raster::EMPTY;
 use sightline::scene::SceneBuilder;
+use support::Rng;
 
 const W: u32 = 64;
 const H: u32 = 32; // powers of two: pixel centres fall exactly on the snapping grid

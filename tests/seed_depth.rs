@@ -27,8 +27,11 @@ fn seed_camera(scene: &Scene, near: f64, far: f64) -> Camera {
         .unwrap()
 }
 
-/// Depth histogram by face colour: red faces are those with emissive red.
-fn depths_by_face(scene: &Scene, camera: &Camera) -> (BTreeMap<(u32, u16), usize>, Vec<u16>, Vec<Option<u32>>) {
+/// Pixel count per (face id or u32::MAX for background, 16-bit depth).
+type DepthHistogram = BTreeMap<(u32, u16), usize>;
+
+/// The depth histogram, the 16-bit depths and the face ids of a z-buffer render.
+fn depths_by_face(scene: &Scene, camera: &Camera) -> (DepthHistogram, Vec<u16>, Vec<Option<u32>>) {
     let (prepared, zb) = render_zbuffer(scene, camera, CullMode::Auto, |_| {});
     let depth: Vec<u16> = zb
         .normalized_depth(&prepared.screen)
@@ -67,7 +70,10 @@ fn near_5_far_10_gives_49151_and_58253() {
     let (hist, depth, ids) = depths_by_face(&scene, &cam);
     // Exactly three depth values: red, blue and the background.
     let values: std::collections::BTreeSet<u16> = hist.keys().map(|k| k.1).collect();
-    assert_eq!(values.into_iter().collect::<Vec<_>>(), vec![49151, 58253, 65535]);
+    assert_eq!(
+        values.into_iter().collect::<Vec<_>>(),
+        vec![49151, 58253, 65535]
+    );
     assert!(hist.contains_key(&(0, 49151)) && hist.contains_key(&(1, 58253)));
     assert!(!hist.contains_key(&(0, 58253)) && !hist.contains_key(&(1, 49151)));
     // Where they overlap (world (0, -1) is inside both), red is in front.

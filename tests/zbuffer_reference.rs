@@ -4,12 +4,12 @@
 
 mod support;
 
-use support::*;
 use glam::DVec3;
 use sightline::camera::{Camera, NamedView, Projection};
 use sightline::pipeline::render_zbuffer;
 use sightline::project::CullMode;
 use sightline::scene::{Scene, SceneBuilder};
+use support::*;
 
 fn check_against_brute_force(scene: &Scene, camera: &Camera, cull: CullMode) -> (usize, usize) {
     let (prepared, zb) = render_zbuffer(scene, camera, cull, |_| {});

@@ -1,6 +1,7 @@
-//! Flat shading with a headlight (seed 004): `I = emissive + diffuse·(ka + kd·|N·V|)`, the light
-//! at the eye. The absolute value lights faces seen from behind (open or two-sided surfaces) as
-//! their front would be.
+//! Flat shading with a headlight (seed 004): `I = emissive + diffuse·(ka + kd·|N·L|)`, with L the
+//! direction the camera looks from (a directional light over the viewer's shoulder), so coplanar
+//! faces get exactly the same shade whatever their size or place. The absolute value lights faces
+//! seen from behind (open or two-sided surfaces) as their front would be.
 
 use crate::camera::Camera;
 use crate::scene::Scene;
@@ -15,13 +16,7 @@ pub fn flat_color(scene: &Scene, face: usize, camera: &Camera) -> [f64; 3] {
     let f = &scene.faces[face];
     let m = &scene.materials[f.material as usize];
     let n = scene.face_normal(f).normalize_or_zero();
-    let to_eye = if camera.is_perspective() {
-        let c = scene.face_positions(f).sum::<glam::DVec3>() / f.len as f64;
-        (camera.eye - c).normalize_or_zero()
-    } else {
-        -camera.forward()
-    };
-    let light = AMBIENT + DIFFUSE * n.dot(to_eye).abs();
+    let light = AMBIENT + DIFFUSE * n.dot(-camera.forward()).abs();
     std::array::from_fn(|k| (m.emissive[k] + m.diffuse[k] * light).clamp(0.0, 1.0))
 }
 
