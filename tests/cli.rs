@@ -213,3 +213,27 @@ fn writes_into_the_target_directory_only() {
     assert_eq!(names, vec![std::ffi::OsString::from("a.png")]);
     assert!(Path::new(&out).exists());
 }
+
+#[test]
+fn every_malformed_fixture_fails_cleanly_through_the_cli() {
+    let mut checked = 0;
+    let mut entries: Vec<PathBuf> = std::fs::read_dir("fixtures/bad")
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e != "mtl"))
+        .collect();
+    entries.sort();
+    for path in entries {
+        let p = path.to_str().unwrap();
+        let o = sightline(&["info", p]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{p}: {err}");
+        // An error inside an OBJ's material library names the .mtl file.
+        let named = err.contains(p) || err.contains(&p.replace(".obj", ".mtl"));
+        assert!(err.starts_with("error: ") && named, "{p}: names the file: {err}");
+        assert!(!err.contains("panicked"), "{p}: {err}");
+        assert!(o.stdout.is_empty(), "{p}: nothing on stdout");
+        checked += 1;
+    }
+    assert!(checked >= 10, "at least 10 kinds of malformed file, found {checked}");
+}
