@@ -1,10 +1,10 @@
 //! The OBJ, STL and PLY loaders never panic: on random bytes, on token soups of each format's
 //! keywords and troublesome numbers, on structurally valid files with random contents, and on
 //! random mutations (bit flips, byte and token insertions, deletions, duplications, truncation) of
-//! the good and bad fixtures.
+//! the good and bad fixtures. MTL files are fuzzed through an OBJ that references them.
 //!
 //! The default tests run a modest number of cases. The `#[ignore]`d `*_long` ones run
-//! `SIGHTLINE_FUZZ_CASES` cases (default 1,000,000) per format:
+//! `SIGHTLINE_FUZZ_CASES` cases (default 1,000,000) per format, a tenth of that for MTL:
 //! `SIGHTLINE_FUZZ_CASES=200000 cargo test --release --test fuzz_mesh_formats -- --ignored`.
 
 mod common;
@@ -528,6 +528,79 @@ fn fuzz_stl_long() {
 #[ignore = "long: SIGHTLINE_FUZZ_CASES cases (default 1,000,000)"]
 fn fuzz_ply_long() {
     fuzz(Format::Ply, long_cases());
+}
+
+/// MTL files are only read through an OBJ's `mtllib` from a directory, so this one goes through
+/// the file system: each case rewrites `m.mtl` next to a one-triangle OBJ that uses it.
+fn fuzz_mtl(cases: u32) {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("t.obj");
+    let mtl = dir.path().join("m.mtl");
+    std::fs::write(
+        &obj,
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n",
+    )
+    .unwrap();
+    let seed = std::fs::read(common::fixtures().join("cube.mtl")).unwrap();
+    let dict: Vec<&'static [u8]> = vec![
+        b"newmtl",
+        b"red",
+        b"Kd",
+        b"Ke",
+        b"Ka",
+        b"d",
+        b"-halo",
+        b"Tr",
+        b"spectral",
+        b"map_Kd",
+        b" ",
+        b"\n",
+        b"\r\n",
+        b"#",
+        b"0",
+        b"1",
+        b"0.5",
+        b"-1",
+        b"2",
+        b"nan",
+        b"inf",
+        b"1e999",
+        b"\xff",
+    ];
+    let dict2 = dict.clone();
+    let strategy = prop_oneof![
+        prop::collection::vec(mutation(), 1..6).prop_map(move |m| apply(seed.clone(), &m, &dict)),
+        prop::collection::vec(select(dict2), 0..60).prop_map(|t| t.concat()),
+    ];
+    let mut runner = TestRunner::new(Config {
+        cases,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let start = Instant::now();
+    let result = runner.run(&strategy, |bytes| {
+        std::fs::write(&mtl, &bytes).unwrap();
+        let _ = sightline::scene::load(&obj, None);
+        Ok(())
+    });
+    eprintln!(
+        "fuzz mtl: {cases} cases in {:.2} s",
+        start.elapsed().as_secs_f64()
+    );
+    if let Err(e) = result {
+        panic!("MTL loading panicked: {e}");
+    }
+}
+
+#[test]
+fn fuzz_mtl_files() {
+    fuzz_mtl(5_000);
+}
+
+#[test]
+#[ignore = "long: SIGHTLINE_FUZZ_CASES / 10 cases (it writes a file per case)"]
+fn fuzz_mtl_long() {
+    fuzz_mtl(long_cases() / 10);
 }
 
 #[test]
