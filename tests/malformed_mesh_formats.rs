@@ -235,9 +235,13 @@ fn ply_huge_count() {
 
 #[test]
 fn every_bad_fixture_has_a_test() {
+    // OBJ, MTL, STL and PLY fixtures are tested here; X3D ones in malformed_x3d.rs.
     let src = include_str!("malformed_mesh_formats.rs");
     for entry in std::fs::read_dir(common::fixtures().join("bad")).unwrap() {
         let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        if name.ends_with(".x3d") {
+            continue;
+        }
         assert!(src.contains(&format!("\"{name}\"")), "{name} is not tested");
     }
 }
