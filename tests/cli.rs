@@ -230,10 +230,16 @@ fn every_malformed_fixture_fails_cleanly_through_the_cli() {
         assert_eq!(o.status.code(), Some(1), "{p}: {err}");
         // An error inside an OBJ's material library names the .mtl file.
         let named = err.contains(p) || err.contains(&p.replace(".obj", ".mtl"));
-        assert!(err.starts_with("error: ") && named, "{p}: names the file: {err}");
+        assert!(
+            err.starts_with("error: ") && named,
+            "{p}: names the file: {err}"
+        );
         assert!(!err.contains("panicked"), "{p}: {err}");
         assert!(o.stdout.is_empty(), "{p}: nothing on stdout");
         checked += 1;
     }
-    assert!(checked >= 10, "at least 10 kinds of malformed file, found {checked}");
+    assert!(
+        checked >= 10,
+        "at least 10 kinds of malformed file, found {checked}"
+    );
 }

@@ -1,9 +1,9 @@
 //! Scenes generated in code, and a brute-force visibility reference, shared by the tests.
 #![allow(dead_code)]
 
-use glam::DVec3;
+use glam::{DMat4, DVec3};
 use sightline::camera::Camera;
-use sightline::scene::{Scene, SceneBuilder};
+use sightline::scene::{Scene, SceneBuilder, primitives};
 
 /// A tiny deterministic RNG (splitmix64).
 pub struct Rng(pub u64);
@@ -25,28 +25,12 @@ impl Rng {
     }
 }
 
-/// Adds an axis-aligned box as six outward quads, in a mesh of its own.
+/// Adds an axis-aligned box (outward, closed) in a mesh of its own.
 pub fn add_box(b: &mut SceneBuilder, lo: DVec3, hi: DVec3, name: &str) {
     b.begin_mesh(name);
     let m = b.default_material();
-    let base = b.vertex_count() as u32;
-    for k in 0..8 {
-        b.add_vertex(DVec3::new(
-            if k & 1 == 0 { lo.x } else { hi.x },
-            if k & 2 == 0 { lo.y } else { hi.y },
-            if k & 4 == 0 { lo.z } else { hi.z },
-        ));
-    }
-    for q in [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ] {
-        b.add_face(&q.map(|v| base + v), m);
-    }
+    let at = DMat4::from_translation((lo + hi) * 0.5);
+    primitives::add_box(b, &at, hi - lo, m);
 }
 
 /// Adds a triangle in a mesh of its own (open: never culled).
@@ -57,30 +41,11 @@ pub fn add_triangle(b: &mut SceneBuilder, p: [DVec3; 3]) {
     b.add_face(&v, m);
 }
 
-/// A closed UV sphere of `seg` x `rings` (triangles), outward.
+/// Adds a closed UV sphere of `seg` x `rings` in a mesh of its own.
 pub fn add_sphere(b: &mut SceneBuilder, c: DVec3, r: f64, seg: usize, rings: usize) {
     b.begin_mesh("sphere");
     let m = b.default_material();
-    let top = b.add_vertex(c + DVec3::new(0., r, 0.));
-    let mut ring_start = Vec::new();
-    for k in 1..rings {
-        let th = std::f64::consts::PI * k as f64 / rings as f64;
-        ring_start.push(b.vertex_count() as u32);
-        for s in 0..seg {
-            let ph = 2.0 * std::f64::consts::PI * s as f64 / seg as f64;
-            b.add_vertex(c + r * DVec3::new(th.sin() * ph.cos(), th.cos(), -th.sin() * ph.sin()));
-        }
-    }
-    let bottom = b.add_vertex(c + DVec3::new(0., -r, 0.));
-    let v = |ring: usize, s: usize| ring_start[ring] + (s % seg) as u32;
-    for s in 0..seg {
-        b.add_face(&[top, v(0, s), v(0, s + 1)], m);
-        for ring in 0..rings - 2 {
-            b.add_face(&[v(ring, s), v(ring + 1, s), v(ring + 1, s + 1)], m);
-            b.add_face(&[v(ring, s), v(ring + 1, s + 1), v(ring, s + 1)], m);
-        }
-        b.add_face(&[v(rings - 2, s), bottom, v(rings - 2, s + 1)], m);
-    }
+    primitives::add_sphere(b, &DMat4::from_translation(c), r, seg, rings, m);
 }
 
 /// `n` random triangles in [-1,1]^3 (overlapping and interpenetrating), each its own mesh.
