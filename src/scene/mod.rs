@@ -17,6 +17,7 @@ mod obj;
 mod ply;
 pub mod primitives;
 mod stl;
+mod text;
 mod x3d;
 
 pub use builder::{FaceOutcome, SceneBuilder};

@@ -11,7 +11,7 @@
 //! ignored. Errors (bad or non-finite numbers, wrong value counts) name the `.mtl` file and line.
 
 use super::Material;
-use super::obj::{Tokens, lossy, next_line, parse_f64, show, strip_comment};
+use super::text::{Tokens, lossy, next_line, parse_f64, show, strip_comment};
 use crate::error::LoadError;
 
 /// Parses a material library. `file` names it in errors and warnings.

@@ -18,7 +18,7 @@
 //! ASCII bodies are read one element entry per line (blank lines are skipped); an entry with too
 //! few or too many values is an error at its line.
 
-use super::obj::{Tokens, file_label, lossy, next_line, parse_f64, parse_int, show};
+use super::text::{Tokens, file_label, lossy, next_line, parse_f64, parse_int, show};
 use super::{Scene, SceneBuilder};
 use crate::error::{LoadError, Location};
 use glam::DVec3;

@@ -13,7 +13,7 @@
 //! keywords are case-insensitive and tokens may be split across lines in any way; a missing final
 //! `endsolid` is a warning.
 
-use super::obj::{file_label, lossy, parse_f64, show};
+use super::text::{file_label, lossy, parse_f64, show};
 use super::{Scene, SceneBuilder};
 use crate::error::LoadError;
 use glam::DVec3;
@@ -311,7 +311,7 @@ impl<'a> Ascii<'a> {
             let mut p = [0.0f64; 3];
             for c in &mut p {
                 let t = self.expect_token("a vertex coordinate")?;
-                *c = super::obj::parse_coord(t).map_err(|m| self.err(self.lex.last_line, m))?;
+                *c = super::text::parse_coord(t).map_err(|m| self.err(self.lex.last_line, m))?;
             }
             idx[n] = self
                 .weld
