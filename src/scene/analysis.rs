@@ -122,34 +122,38 @@ fn weld(positions: &[DVec3]) -> Vec<u32> {
 }
 
 fn analyse_mesh(scene: &Scene, faces: &[Face], canon: &[u32]) -> MeshAnalysis {
-    // Each directed edge packed as (low vertex, high vertex, direction bit) in one u128, so one
-    // integer sort groups the uses of every undirected edge.
-    let mut packed: Vec<u128> = Vec::with_capacity(scene.corners.len());
+    // Each directed edge packed as (low vertex: 31 bits, high vertex: 32 bits, direction: 1 bit)
+    // in one u64, so one integer sort groups the uses of every undirected edge. A scene with 2^31
+    // vertices or more (48 GB of positions) is beyond that packing: its meshes are reported as
+    // open, which only turns culling off.
+    if scene.positions.len() >= 1 << 31 {
+        return MeshAnalysis {
+            boundary_edges: 1,
+            nonmanifold_edges: 0,
+            inconsistent_edges: 0,
+            signed_volume: 0.0,
+            volume_sign_certain: false,
+        };
+    }
+    let mut edges: Vec<u64> = Vec::with_capacity(faces.iter().map(|f| f.len as usize).sum());
     for f in faces {
         let c = scene.face_corners(f);
         for k in 0..c.len() {
             let u = canon[c[k] as usize];
             let v = canon[c[(k + 1) % c.len()] as usize];
             let (lo, hi) = if u < v { (u, v) } else { (v, u) };
-            packed.push((lo as u128) << 65 | (hi as u128) << 1 | (u < v) as u128);
+            edges.push((lo as u64) << 33 | (hi as u64) << 1 | (u < v) as u64);
         }
     }
-    packed.sort_unstable();
-    let edges: Vec<(u128, bool)> = packed.iter().map(|&e| (e >> 1, e & 1 == 1)).collect();
+    edges.sort_unstable();
     let (mut boundary, mut nonmanifold, mut inconsistent) = (0, 0, 0);
-    let mut k = 0;
-    while k < edges.len() {
-        let mut e = k + 1;
-        while e < edges.len() && edges[e].0 == edges[k].0 {
-            e += 1;
-        }
-        match e - k {
-            1 => boundary += 1,
-            2 if edges[k].1 == edges[k + 1].1 => inconsistent += 1,
-            2 => {}
+    for group in edges.chunk_by(|a, b| a >> 1 == b >> 1) {
+        match group {
+            [_] => boundary += 1,
+            [a, b] if a == b => inconsistent += 1,
+            [_, _] => {}
             _ => nonmanifold += 1,
         }
-        k = e;
     }
 
     // Signed volume about the mesh's first vertex, with a running bound on the summation error:
