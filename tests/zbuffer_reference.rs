@@ -203,3 +203,46 @@ fn the_camera_inside_a_closed_box_sees_its_inside() {
     );
     check_against_brute_force(&scene, &cam, CullMode::Auto);
 }
+
+mod random_scenes {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 1000, ..ProptestConfig::default() })]
+
+        /// Random triangle soups under random perspective and orthographic cameras, the eye
+        /// sometimes among the triangles (so faces cross the near plane).
+        #[test]
+        fn zbuffer_matches_brute_force_at_interior_pixels(
+            seed in any::<u64>(),
+            n in 1usize..25,
+            eye in prop::array::uniform3(-4.0f64..4.0),
+            ortho in any::<bool>(),
+            fov in 20.0f64..100.0,
+            near in 0.05f64..1.0,
+        ) {
+            let scene = random_triangles(n, seed);
+            let eye = DVec3::from_array(eye);
+            prop_assume!(eye.length() > 0.3);
+            let projection = if ortho {
+                Projection::Orthographic { height: 3.0 }
+            } else {
+                Projection::Perspective { fovy_deg: fov }
+            };
+            let near = if ortho { -6.0 } else { near };
+            let cam = Camera {
+                eye,
+                target: DVec3::ZERO,
+                up: if eye.cross(DVec3::Y).length() > 1e-3 { DVec3::Y } else { DVec3::X },
+                projection,
+                near,
+                far: 12.0,
+                width: 48,
+                height: 40,
+            };
+            prop_assume!(cam.validate().is_ok());
+            check_against_brute_force(&scene, &cam, CullMode::Auto);
+        }
+    }
+}
