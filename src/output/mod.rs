@@ -1,6 +1,7 @@
 //! Writing results. Files are written whole or not at all: bytes go to a temporary file in the
 //! target's directory, which is then renamed over the target. `-` means standard output.
 
+pub mod drawing;
 pub mod png;
 
 use crate::error::Error;
