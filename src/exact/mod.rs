@@ -36,6 +36,8 @@
 //! bound cannot decide do they fall back to the integer computation. Every fallback is counted
 //! in [`Fallbacks`].
 
+pub mod predicates;
+
 use bnum::cast::As;
 use bnum::types::I256;
 use std::cell::Cell;
@@ -89,7 +91,8 @@ pub fn twice_signed_area(points: &[GridPoint]) -> i128 {
     s
 }
 
-/// A support plane `a·x + b·y + c·z + d = 0` with `c > 0`, through three snapped corners.
+/// A plane `a·x + b·y + c·z + d = 0` of the grid, built from grid points only: a support plane
+/// (`c > 0`, through three snapped corners) or an edge plane (`c == 0`, vertical, through two).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Plane {
     pub a: i64,
@@ -115,6 +118,38 @@ impl Plane {
         }
         let d = -(a as i128 * p.x as i128 + b as i128 * p.y as i128 + c as i128 * p.z as i128);
         Some(Plane { a, b, c, d })
+    }
+
+    /// The vertical plane through the (x, y) of `p` and `q`, positive on the left of `p → q`
+    /// (inside a counter-clockwise polygon, y up): its value at r is `orient2d(p, q, r)`.
+    /// `None` when `p` and `q` have the same (x, y).
+    pub fn edge(p: GridPoint, q: GridPoint) -> Option<Plane> {
+        let a = p.y as i64 - q.y as i64;
+        let b = q.x as i64 - p.x as i64;
+        if a == 0 && b == 0 {
+            return None;
+        }
+        let d = -(a as i128 * p.x as i128 + b as i128 * p.y as i128);
+        Some(Plane { a, b, c: 0, d })
+    }
+
+    /// The plane's equation at a grid point, exactly.
+    #[inline]
+    pub fn value_at(&self, p: GridPoint) -> i128 {
+        self.a as i128 * p.x as i128
+            + self.b as i128 * p.y as i128
+            + self.c as i128 * p.z as i128
+            + self.d
+    }
+
+    /// The same plane with its sides swapped.
+    pub fn negated(&self) -> Plane {
+        Plane {
+            a: -self.a,
+            b: -self.b,
+            c: -self.c,
+            d: -self.d,
+        }
     }
 
     /// The support plane of a snapped polygon: through its first corner, the corner farthest from

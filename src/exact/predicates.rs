@@ -1,0 +1,390 @@
+//! Exact predicates on planes and lines of the screen grid, with split points kept implicit.
+//!
+//! Geometry is in grid space (see the parent module): a face lies in its support [`Plane`]; an
+//! edge is a vertical plane, i.e. a [`Line`] on screen. A point that splitting creates is never
+//! rounded: it is named by the planes that meet there ([`meet_side`], [`depth_order_at`]) or by
+//! two lines ([`line_side`]), and every decision about it is the sign of a small determinant of
+//! the defining coefficients.
+//!
+//! A [`Line`] is an input edge (a vertical plane through two grid points, coefficients below
+//! 2^26 and 2^50) or the screen projection of the meeting of two input planes,
+//! `c_Q·P - c_P·Q` (coefficients below 2^101 and 2^126). The largest determinant any predicate
+//! here takes is then below 2^331, so the exact path computes in 512-bit integers
+//! (`bnum::types::I512`): fixed width, no growth however often a polygon is split, because
+//! every line and plane is built from input planes only.
+//!
+//! **Filter.** Every predicate first evaluates its determinant in f64. Each entry is carried with
+//! a magnitude `M >= |entry|` and an error below `3·U·M` (the entry is an input coefficient rounded
+//! once, or one subtraction of two rounded products). A Laplace expansion of an n x n determinant
+//! (n <= 4) multiplies n entries and sums at most 24 terms, so its error is below
+//! `(3n + 2n + 1)·U·perm(M) <= 21·U·perm(M)` for n = 4, where `perm(M)` is the permanent of the
+//! magnitudes (to first order in U; the 1% margin below covers the higher-order terms). When
+//! `|det| > 24·U·perm(M)`, the f64 sign is the exact sign; otherwise the 512-bit computation
+//! decides. Each fallback is counted ([`fallback_count`]).
+
+use super::{GridPoint, Plane, U};
+use bnum::cast::As;
+use bnum::types::I512;
+use std::cell::Cell;
+use std::cmp::Ordering;
+
+thread_local! {
+    static FALLBACKS: Cell<u64> = const { Cell::new(0) };
+}
+
+/// How many predicate evaluations on this thread the f64 filter could not decide.
+pub fn fallback_count() -> u64 {
+    FALLBACKS.with(|c| c.get())
+}
+
+fn count_fallback() {
+    FALLBACKS.with(|c| c.set(c.get() + 1));
+}
+
+/// A line on screen: a vertical plane `a·x + b·y + d = 0` of the grid. Its positive side is its
+/// left (counter-clockwise interior, y up) for edges made by [`Plane::edge`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Line {
+    /// An input vertical plane (`c == 0`): an edge of a face.
+    Edge(Plane),
+    /// The projection of the meeting line of two non-parallel input planes `P`, `Q`:
+    /// `c_Q·P - c_P·Q`, which has no z term.
+    Cut(Plane, Plane),
+}
+
+/// One coefficient, three ways: f64 value, f64 magnitude bound, and exact.
+#[derive(Clone, Copy)]
+struct Entry {
+    value: f64,
+    magnitude: f64,
+}
+
+impl Line {
+    /// f64 coefficients (a, b, d) with their magnitude bounds.
+    fn filtered(&self) -> [Entry; 3] {
+        match self {
+            Line::Edge(p) => {
+                debug_assert_eq!(p.c, 0);
+                [entry(p.a as f64), entry(p.b as f64), entry(p.d as f64)]
+            }
+            Line::Cut(p, q) => {
+                let (pc, qc) = (p.c as f64, q.c as f64);
+                let combine = |pv: f64, qv: f64| Entry {
+                    value: qc * pv - pc * qv,
+                    magnitude: (qc * pv).abs() + (pc * qv).abs(),
+                };
+                [
+                    combine(p.a as f64, q.a as f64),
+                    combine(p.b as f64, q.b as f64),
+                    combine(p.d as f64, q.d as f64),
+                ]
+            }
+        }
+    }
+
+    /// Exact coefficients (a, b, d).
+    fn exact(&self) -> [I512; 3] {
+        match self {
+            Line::Edge(p) => [wide(p.a as i128), wide(p.b as i128), wide(p.d)],
+            Line::Cut(p, q) => {
+                let (pc, qc) = (wide(p.c as i128), wide(q.c as i128));
+                [
+                    qc * wide(p.a as i128) - pc * wide(q.a as i128),
+                    qc * wide(p.b as i128) - pc * wide(q.b as i128),
+                    qc * wide(p.d) - pc * wide(q.d),
+                ]
+            }
+        }
+    }
+
+    /// The line as a plane row (a, b, 0, d) for 4x4 determinants.
+    fn filtered_row(&self) -> [Entry; 4] {
+        let [a, b, d] = self.filtered();
+        [a, b, entry(0.0), d]
+    }
+
+    fn exact_row(&self) -> [I512; 4] {
+        let [a, b, d] = self.exact();
+        [a, b, zero(), d]
+    }
+
+    /// Exact value of the line's equation at a grid point (its z is ignored).
+    pub fn side_of_point(&self, p: GridPoint) -> Ordering {
+        let [a, b, d] = self.exact();
+        (a * wide(p.x as i128) + b * wide(p.y as i128) + d).cmp(&zero())
+    }
+}
+
+fn entry(v: f64) -> Entry {
+    Entry {
+        value: v,
+        magnitude: v.abs(),
+    }
+}
+
+fn wide(v: i128) -> I512 {
+    v.as_()
+}
+
+fn zero() -> I512 {
+    wide(0)
+}
+
+fn plane_filtered(p: &Plane) -> [Entry; 4] {
+    [
+        entry(p.a as f64),
+        entry(p.b as f64),
+        entry(p.c as f64),
+        entry(p.d as f64),
+    ]
+}
+
+fn plane_exact(p: &Plane) -> [I512; 4] {
+    [
+        wide(p.a as i128),
+        wide(p.b as i128),
+        wide(p.c as i128),
+        wide(p.d),
+    ]
+}
+
+/// Laplace expansion of a 3x3 determinant in f64, with the permanent of the magnitudes.
+fn det3_f64(m: [[Entry; 3]; 3]) -> (f64, f64) {
+    let minor = |r1: [Entry; 3], r2: [Entry; 3], i: usize, j: usize| {
+        (
+            r1[i].value * r2[j].value - r1[j].value * r2[i].value,
+            r1[i].magnitude * r2[j].magnitude + r1[j].magnitude * r2[i].magnitude,
+        )
+    };
+    let (m12, p12) = minor(m[1], m[2], 1, 2);
+    let (m02, p02) = minor(m[1], m[2], 0, 2);
+    let (m01, p01) = minor(m[1], m[2], 0, 1);
+    let det = m[0][0].value * m12 - m[0][1].value * m02 + m[0][2].value * m01;
+    let perm = m[0][0].magnitude * p12 + m[0][1].magnitude * p02 + m[0][2].magnitude * p01;
+    (det, perm)
+}
+
+fn det3_exact(m: [[I512; 3]; 3]) -> I512 {
+    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+}
+
+fn drop_col<T: Copy>(row: [T; 4], col: usize) -> [T; 3] {
+    let mut out = [row[0]; 3];
+    let mut k = 0;
+    for (c, v) in row.into_iter().enumerate() {
+        if c != col {
+            out[k] = v;
+            k += 1;
+        }
+    }
+    out
+}
+
+/// 4x4 determinant in f64 by expansion along the first row, with the permanent of magnitudes.
+fn det4_f64(m: [[Entry; 4]; 4]) -> (f64, f64) {
+    let mut det = 0.0;
+    let mut perm = 0.0;
+    for col in 0..4 {
+        let sub = [
+            drop_col(m[1], col),
+            drop_col(m[2], col),
+            drop_col(m[3], col),
+        ];
+        let (d, p) = det3_f64(sub);
+        let sign = if col % 2 == 0 { 1.0 } else { -1.0 };
+        det += sign * m[0][col].value * d;
+        perm += m[0][col].magnitude * p;
+    }
+    (det, perm)
+}
+
+fn det4_exact(m: [[I512; 4]; 4]) -> I512 {
+    let mut det = zero();
+    for col in 0..4 {
+        if m[0][col] == zero() {
+            continue;
+        }
+        let sub = [
+            drop_col(m[1], col),
+            drop_col(m[2], col),
+            drop_col(m[3], col),
+        ];
+        let d = m[0][col] * det3_exact(sub);
+        if col % 2 == 0 {
+            det += d;
+        } else {
+            det -= d;
+        }
+    }
+    det
+}
+
+/// Error bound factor of the filter (see the module docs).
+const FILTER: f64 = 24.0 * U;
+
+/// The sign of a filtered determinant, or `None` when the filter cannot decide.
+fn filtered_sign(det: f64, perm: f64) -> Option<Ordering> {
+    if det > FILTER * perm {
+        Some(Ordering::Greater)
+    } else if det < -FILTER * perm {
+        Some(Ordering::Less)
+    } else {
+        None
+    }
+}
+
+/// Which side of `q` the point where `p0`, `p1`, `p2` meet lies on: `Greater` where `q`'s
+/// equation is positive. `None` when the three planes do not meet in one point.
+pub fn meet_side(p: [&Plane; 3], q: &Plane) -> Option<Ordering> {
+    let rows = [
+        plane_filtered(p[0]),
+        plane_filtered(p[1]),
+        plane_filtered(p[2]),
+    ];
+    let normals = rows.map(|r| [r[0], r[1], r[2]]);
+    let exact_rows = || [plane_exact(p[0]), plane_exact(p[1]), plane_exact(p[2])];
+    // With D the normals' determinant, Cramer's rule gives q at the point as det4(p0,p1,p2,q)/D.
+    let d_sign = match filtered_sign_of(det3_f64(normals)) {
+        Some(s) => s,
+        None => {
+            let e = exact_rows();
+            let d = det3_exact(e.map(|r| [r[0], r[1], r[2]]));
+            d.cmp(&zero())
+        }
+    };
+    if d_sign == Ordering::Equal {
+        return None;
+    }
+    let m = [rows[0], rows[1], rows[2], plane_filtered(q)];
+    let det_sign = match filtered_sign_of(det4_f64(m)) {
+        Some(s) => s,
+        None => {
+            let e = exact_rows();
+            det4_exact([e[0], e[1], e[2], plane_exact(q)]).cmp(&zero())
+        }
+    };
+    Some(combine_signs(det_sign, d_sign))
+}
+
+fn filtered_sign_of((det, perm): (f64, f64)) -> Option<Ordering> {
+    let s = filtered_sign(det, perm);
+    if s.is_none() {
+        count_fallback();
+    }
+    s
+}
+
+fn combine_signs(a: Ordering, b: Ordering) -> Ordering {
+    match (a, b) {
+        (Ordering::Equal, _) | (_, Ordering::Equal) => Ordering::Equal,
+        (x, y) if x == y => Ordering::Greater,
+        _ => Ordering::Less,
+    }
+}
+
+/// Which side of line `l` the screen point where `m0` and `m1` cross lies on (`Greater`: where
+/// `l`'s equation is positive). `None` when `m0` and `m1` are parallel.
+pub fn line_side(m: [&Line; 2], l: &Line) -> Option<Ordering> {
+    let f = [m[0].filtered(), m[1].filtered(), l.filtered()];
+    let exact = || [m[0].exact(), m[1].exact(), l.exact()];
+    // Crossing point (x, y) of a0 x + b0 y + d0 = 0 and a1 x + b1 y + d1 = 0:
+    // l at it = det3(m0, m1, l) / D with D = a0 b1 - a1 b0.
+    let d_sign = {
+        let (a0, b0, a1, b1) = (f[0][0], f[0][1], f[1][0], f[1][1]);
+        let det = a0.value * b1.value - a1.value * b0.value;
+        let perm = a0.magnitude * b1.magnitude + a1.magnitude * b0.magnitude;
+        match filtered_sign_of((det, perm)) {
+            Some(s) => s,
+            None => {
+                let e = exact();
+                (e[0][0] * e[1][1] - e[1][0] * e[0][1]).cmp(&zero())
+            }
+        }
+    };
+    if d_sign == Ordering::Equal {
+        return None;
+    }
+    let det_sign = match filtered_sign_of(det3_f64(f)) {
+        Some(s) => s,
+        None => det3_exact(exact()).cmp(&zero()),
+    };
+    Some(combine_signs(det_sign, d_sign))
+}
+
+/// At the screen point where lines `m0` and `m1` cross, is the support plane `s` nearer than `t`
+/// (`Less`), at the same depth (`Equal`) or farther (`Greater`)? Both planes must have `c > 0`
+/// (support planes). `None` when the lines are parallel.
+pub fn depth_order_at(m: [&Line; 2], s: &Plane, t: &Plane) -> Option<Ordering> {
+    debug_assert!(s.c > 0 && t.c > 0);
+    // The 3D point on s above the crossing: s ∩ m0 ∩ m1. It is nearer than t's point (smaller
+    // z) exactly when it lies on t's negative side, since t's equation grows with z (c > 0):
+    // the order is the sign of t there, det4(s, m0, m1, t)/D by Cramer's rule.
+    let rows = [plane_filtered(s), m[0].filtered_row(), m[1].filtered_row()];
+    let exact_rows = || [plane_exact(s), m[0].exact_row(), m[1].exact_row()];
+    let normals = rows.map(|r| [r[0], r[1], r[2]]);
+    let d_sign = match filtered_sign_of(det3_f64(normals)) {
+        Some(s) => s,
+        None => {
+            let e = exact_rows();
+            det3_exact(e.map(|r| [r[0], r[1], r[2]])).cmp(&zero())
+        }
+    };
+    if d_sign == Ordering::Equal {
+        return None;
+    }
+    let m4 = [rows[0], rows[1], rows[2], plane_filtered(t)];
+    let det_sign = match filtered_sign_of(det4_f64(m4)) {
+        Some(s) => s,
+        None => {
+            let e = exact_rows();
+            det4_exact([e[0], e[1], e[2], plane_exact(t)]).cmp(&zero())
+        }
+    };
+    Some(combine_signs(det_sign, d_sign))
+}
+
+/// Exact orientation of three grid points' (x, y): `Greater` for counter-clockwise (y up).
+pub fn orient2d(p: GridPoint, q: GridPoint, r: GridPoint) -> Ordering {
+    let det = (q.x as i64 - p.x as i64) * (r.y as i64 - p.y as i64)
+        - (q.y as i64 - p.y as i64) * (r.x as i64 - p.x as i64);
+    det.cmp(&0)
+}
+
+/// How two closed screen segments `p0p1` and `q0q1` (grid points, x and y) meet.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Crossing {
+    /// No common point.
+    Disjoint,
+    /// They cross at one point interior to both.
+    Proper,
+    /// They share a point that is an endpoint of one of them, or overlap collinearly.
+    Touch,
+}
+
+/// Exact classification of two segments on screen.
+pub fn segments_cross(p0: GridPoint, p1: GridPoint, q0: GridPoint, q1: GridPoint) -> Crossing {
+    let d1 = orient2d(q0, q1, p0);
+    let d2 = orient2d(q0, q1, p1);
+    let d3 = orient2d(p0, p1, q0);
+    let d4 = orient2d(p0, p1, q1);
+    use Ordering::*;
+    if d1 != Equal && d2 != Equal && d1 != d2 && d3 != Equal && d4 != Equal && d3 != d4 {
+        return Crossing::Proper;
+    }
+    let on = |a: GridPoint, b: GridPoint, c: GridPoint| {
+        c.x.min(a.x.max(b.x)) == c.x
+            && c.x >= a.x.min(b.x)
+            && c.y <= a.y.max(b.y)
+            && c.y >= a.y.min(b.y)
+    };
+    if (d1 == Equal && on(q0, q1, p0))
+        || (d2 == Equal && on(q0, q1, p1))
+        || (d3 == Equal && on(p0, p1, q0))
+        || (d4 == Equal && on(p0, p1, q1))
+    {
+        return Crossing::Touch;
+    }
+    Crossing::Disjoint
+}
