@@ -57,9 +57,9 @@ fn solve(mut rows: Vec<Vec<Q>>) -> Option<Vec<Q>> {
         for r in 0..n {
             if r != col && !rows[r][col].is_zero() {
                 let f = &rows[r][col] / &rows[col][col];
-                for k in col..=n {
-                    let v = &rows[col][k] * &f;
-                    rows[r][k] -= v;
+                let pivot_row = rows[col].clone();
+                for (dst, src) in rows[r].iter_mut().zip(&pivot_row).skip(col) {
+                    *dst -= src * &f;
                 }
             }
         }
