@@ -36,6 +36,7 @@
 //! bound cannot decide do they fall back to the integer computation. Every fallback is counted
 //! in [`Fallbacks`].
 
+pub mod polygon;
 pub mod predicates;
 
 use bnum::cast::As;

@@ -1,0 +1,502 @@
+//! Convex pieces of faces with implicit vertices, and their exact splitting.
+//!
+//! A [`Piece`] lies in a support plane and is bounded, counter-clockwise on screen (y up), by a
+//! cycle of [`Line`]s whose positive sides are the inside. Vertex k is where lines `k-1` and `k`
+//! cross, lifted onto the support plane: it is never computed, only classified. Splitting adds one
+//! line, built from input planes (`Line::Cut` of the support plane and the splitter, or the
+//! splitting line itself), so precision never grows however often a piece is split.
+//!
+//! Invariants of every piece made here: at least three lines, strictly convex, positive area.
+//! Splitting only ever reads the signs of the vertices, so a part exists only when some vertex is
+//! strictly on its side, and then it has positive area.
+//!
+//! Non-convex faces are cut into convex pieces first ([`convex_pieces`]): every later operation
+//! (BSP splitting, coverage) then needs only the convex split.
+
+use super::predicates::{Line, depth_order_at, line_side};
+use super::{GridPoint, Plane};
+use std::cmp::Ordering;
+
+/// A convex piece of a face. See the module docs.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Piece {
+    /// Index of the screen polygon (face) it belongs to.
+    pub poly: u32,
+    pub support: Plane,
+    /// Boundary lines, counter-clockwise; vertex k is where `lines[k-1]` and `lines[k]` cross.
+    pub lines: Vec<Line>,
+    /// The grid (x, y) of vertex k when it is an input corner: exact fast paths use it.
+    pub corners: Vec<Option<[i32; 2]>>,
+}
+
+/// Where a piece lies relative to a plane or a line.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Split {
+    /// Entirely on the negative side (touching allowed).
+    Negative,
+    /// Entirely on the positive side (touching allowed).
+    Positive,
+    /// On both sides: the negative part and the positive part.
+    Both(Piece, Piece),
+    /// Every vertex on the plane (only possible for a plane: the piece lies in it).
+    On,
+}
+
+impl Piece {
+    /// The piece of a convex grid polygon (counter-clockwise, y up) in `support`.
+    pub fn from_convex(poly: u32, support: Plane, corners: &[GridPoint]) -> Piece {
+        let n = corners.len();
+        let lines = (0..n)
+            .map(|k| {
+                Line::Edge(
+                    Plane::edge(corners[k], corners[(k + 1) % n])
+                        .expect("consecutive corners differ"),
+                )
+            })
+            .collect();
+        // Vertex k sits between line k-1 and line k: corner k.
+        let corners = corners.iter().map(|c| Some([c.x, c.y])).collect();
+        Piece {
+            poly,
+            support,
+            lines,
+            corners,
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.lines.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.lines.is_empty()
+    }
+
+    /// The two lines through vertex k.
+    fn vertex_lines(&self, k: usize) -> [&Line; 2] {
+        let n = self.lines.len();
+        [&self.lines[(k + n - 1) % n], &self.lines[k]]
+    }
+
+    /// The sign of plane `q` at vertex k (lifted onto the support plane). `q.c > 0`.
+    pub fn vertex_plane_sign(&self, k: usize, q: &Plane) -> Ordering {
+        if let Some([x, y]) = self.corners[k]
+            && let Some(s) = grid_vertex_plane_sign(&self.support, x, y, q)
+        {
+            return s;
+        }
+        depth_order_at(self.vertex_lines(k), &self.support, q)
+            .expect("adjacent lines of a convex piece cross")
+    }
+
+    /// The sign of line `l` at vertex k.
+    pub fn vertex_line_sign(&self, k: usize, l: &Line) -> Ordering {
+        if let (Some([x, y]), Line::Edge(p)) = (self.corners[k], l) {
+            let v = p.a as i128 * x as i128 + p.b as i128 * y as i128 + p.d;
+            return v.cmp(&0);
+        }
+        line_side(self.vertex_lines(k), l).expect("adjacent lines of a convex piece cross")
+    }
+
+    /// Splits by a support plane `q` (`q.c > 0`). The negative part is the one nearer the viewer.
+    pub fn split_by_plane(&self, q: &Plane) -> Split {
+        if same_plane(&self.support, q) {
+            return Split::On;
+        }
+        let signs: Vec<Ordering> = (0..self.len())
+            .map(|k| self.vertex_plane_sign(k, q))
+            .collect();
+        // On the support plane, Cut(S, Q) = c_Q·S - c_S·Q has the sign of -Q: positive on the
+        // negative part's inside.
+        self.split_with(
+            &signs,
+            Line::Cut(self.support, *q),
+            Line::Cut(*q, self.support),
+        )
+    }
+
+    /// Splits by a screen line: the negative part is where `l` is negative.
+    pub fn split_by_line(&self, l: &Line) -> Split {
+        let signs: Vec<Ordering> = (0..self.len())
+            .map(|k| self.vertex_line_sign(k, l))
+            .collect();
+        self.split_with(&signs, negate(l), *l)
+    }
+
+    /// Splits given the vertex signs; `neg_line` bounds the negative part (positive inside it),
+    /// `pos_line` the positive part.
+    fn split_with(&self, signs: &[Ordering], neg_line: Line, pos_line: Line) -> Split {
+        let has_neg = signs.contains(&Ordering::Less);
+        let has_pos = signs.contains(&Ordering::Greater);
+        match (has_neg, has_pos) {
+            (false, false) => return Split::On,
+            (true, false) => return Split::Negative,
+            (false, true) => return Split::Positive,
+            (true, true) => {}
+        }
+        Split::Both(
+            self.part(signs, Ordering::Less, neg_line),
+            self.part(signs, Ordering::Greater, pos_line),
+        )
+    }
+
+    /// The part on side `side`: the edges with some point strictly on that side, in order, closed
+    /// by `closing`. Edge k runs from vertex k to vertex k+1 along line k.
+    fn part(&self, signs: &[Ordering], side: Ordering, closing: Line) -> Piece {
+        let n = self.len();
+        // The boundary of the part enters `side` along the edge that runs from a vertex not on
+        // `side` to one on it (unique: the piece is convex and straddles), follows the edges
+        // from vertices on `side`, and leaves along the first edge that ends off it.
+        let start = (0..n)
+            .find(|&k| signs[k] != side && signs[(k + 1) % n] == side)
+            .expect("a straddling convex piece enters each side once");
+        let mut run = vec![start];
+        let mut k = (start + 1) % n;
+        while signs[k] == side {
+            run.push(k);
+            k = (k + 1) % n;
+        }
+        // An end vertex of the run is not on `side`: it is an old vertex when it lies on the cut,
+        // a new (implicit) one otherwise.
+        let end_corner = |v: usize| {
+            if signs[v] == Ordering::Equal {
+                self.corners[v]
+            } else {
+                None
+            }
+        };
+        let last = (run[run.len() - 1] + 1) % n;
+        let mut lines: Vec<Line> = run.iter().map(|&k| self.lines[k]).collect();
+        lines.push(closing);
+        // Vertex 0 joins the closing line and the first kept edge; vertex i joins kept edges
+        // i-1 and i; the last joins the last kept edge and the closing line.
+        let mut corners = Vec::with_capacity(lines.len());
+        corners.push(end_corner(start));
+        corners.extend(run[1..].iter().map(|&k| self.corners[k]));
+        corners.push(end_corner(last));
+        Piece {
+            poly: self.poly,
+            support: self.support,
+            lines,
+            corners,
+        }
+    }
+
+    /// The vertices in f64 grid coordinates (rounded once each: for output only).
+    pub fn vertices_f64(&self) -> Vec<[f64; 2]> {
+        (0..self.len())
+            .map(|k| match self.corners[k] {
+                Some([x, y]) => [x as f64, y as f64],
+                None => {
+                    let [a, b] = self.vertex_lines(k);
+                    crossing_f64(a, b)
+                }
+            })
+            .collect()
+    }
+}
+
+/// The line with its sides swapped.
+pub fn negate(l: &Line) -> Line {
+    match l {
+        Line::Edge(p) => Line::Edge(p.negated()),
+        Line::Cut(p, q) => Line::Cut(*q, *p),
+    }
+}
+
+/// Are two support planes (c > 0) the same plane? Exact: their coefficients are proportional
+/// with a positive factor. Grid planes keep every product below 2^75 · 2^50 < 2^127.
+pub fn same_plane(s: &Plane, q: &Plane) -> bool {
+    let (sc, qc) = (s.c as i128, q.c as i128);
+    s.a as i128 * qc == q.a as i128 * sc
+        && s.b as i128 * qc == q.b as i128 * sc
+        && s.d * qc == q.d * sc
+}
+
+/// The sign of `q` at the point of `s` above grid (x, y), exactly in i128:
+/// `sign(c_s·(q_a x + q_b y + q_d) - q_c·(s_a x + s_b y + s_d))` (the common factor 1/c_s > 0
+/// dropped). Magnitudes stay below 2^127 for grid planes; `None` if an operation would overflow.
+fn grid_vertex_plane_sign(s: &Plane, x: i32, y: i32, q: &Plane) -> Option<Ordering> {
+    let (x, y) = (x as i128, y as i128);
+    let qv = (q.a as i128 * x + q.b as i128 * y).checked_add(q.d)?;
+    let sv = (s.a as i128 * x + s.b as i128 * y).checked_add(s.d)?;
+    let v = (s.c as i128)
+        .checked_mul(qv)?
+        .checked_sub((q.c as i128).checked_mul(sv)?)?;
+    Some(v.cmp(&0))
+}
+
+/// Where two lines cross, in f64 grid coordinates (for output only).
+pub fn crossing_f64(l: &Line, m: &Line) -> [f64; 2] {
+    let c = |l: &Line| -> [f64; 3] {
+        match l {
+            Line::Edge(p) => [p.a as f64, p.b as f64, p.d as f64],
+            Line::Cut(p, q) => {
+                let (pc, qc) = (p.c as f64, q.c as f64);
+                [
+                    qc * p.a as f64 - pc * q.a as f64,
+                    qc * p.b as f64 - pc * q.b as f64,
+                    qc * p.d as f64 - pc * q.d as f64,
+                ]
+            }
+        }
+    };
+    let ([a0, b0, d0], [a1, b1, d1]) = (c(l), c(m));
+    let den = a0 * b1 - a1 * b0;
+    [(b0 * d1 - b1 * d0) / den, (a1 * d0 - a0 * d1) / den]
+}
+
+/// Cuts a simple grid polygon (counter-clockwise, y up, no repeated consecutive points) into
+/// convex polygons, exactly: ear clipping with exact orientation tests, then merging triangles
+/// back across diagonals while the union stays convex (Hertel–Mehlhorn). A convex polygon comes
+/// back whole.
+pub fn convex_pieces(points: &[GridPoint]) -> Vec<Vec<GridPoint>> {
+    use super::predicates::orient2d;
+    let n = points.len();
+    let convex = |ring: &[GridPoint]| {
+        let m = ring.len();
+        (0..m).all(|k| orient2d(ring[k], ring[(k + 1) % m], ring[(k + 2) % m]) != Ordering::Less)
+    };
+    if convex(points) {
+        return vec![points.to_vec()];
+    }
+    // Ear clipping on indices.
+    let mut idx: Vec<usize> = (0..n).collect();
+    let mut triangles: Vec<[usize; 3]> = Vec::new();
+    let mut guard = 0;
+    while idx.len() > 3 && guard < n * n {
+        guard += 1;
+        let m = idx.len();
+        let mut clipped = false;
+        for k in 0..m {
+            let (a, b, c) = (idx[(k + m - 1) % m], idx[k], idx[(k + 1) % m]);
+            if orient2d(points[a], points[b], points[c]) != Ordering::Greater {
+                continue;
+            }
+            let inside = idx.iter().any(|&j| {
+                j != a
+                    && j != b
+                    && j != c
+                    && orient2d(points[a], points[b], points[j]) != Ordering::Less
+                    && orient2d(points[b], points[c], points[j]) != Ordering::Less
+                    && orient2d(points[c], points[a], points[j]) != Ordering::Less
+            });
+            if inside {
+                continue;
+            }
+            triangles.push([a, b, c]);
+            idx.remove(k);
+            clipped = true;
+            break;
+        }
+        if !clipped {
+            // Not a simple polygon (self-touching): drop collinear spikes by taking a fan of the
+            // rest; pieces of a malformed input polygon may then overlap, never crash.
+            break;
+        }
+    }
+    if idx.len() >= 3 {
+        for k in 1..idx.len() - 1 {
+            if orient2d(points[idx[0]], points[idx[k]], points[idx[k + 1]]) == Ordering::Greater {
+                triangles.push([idx[0], idx[k], idx[k + 1]]);
+            }
+        }
+    }
+    // Hertel–Mehlhorn: greedily merge pieces that share an edge while the result stays convex.
+    let mut pieces: Vec<Vec<usize>> = triangles.into_iter().map(|t| t.to_vec()).collect();
+    let mut merged = true;
+    while merged {
+        merged = false;
+        'outer: for i in 0..pieces.len() {
+            for j in i + 1..pieces.len() {
+                if let Some(u) = merge_along_shared_edge(&pieces[i], &pieces[j]) {
+                    let ring: Vec<GridPoint> = u.iter().map(|&v| points[v]).collect();
+                    if convex(&ring) {
+                        pieces[i] = u;
+                        pieces.swap_remove(j);
+                        merged = true;
+                        break 'outer;
+                    }
+                }
+            }
+        }
+    }
+    pieces
+        .into_iter()
+        .map(|p| p.into_iter().map(|v| points[v]).collect())
+        .collect()
+}
+
+/// The union ring of two index rings sharing exactly one edge (a→b in one, b→a in the other).
+fn merge_along_shared_edge(p: &[usize], q: &[usize]) -> Option<Vec<usize>> {
+    let (np, nq) = (p.len(), q.len());
+    for i in 0..np {
+        let (a, b) = (p[i], p[(i + 1) % np]);
+        for j in 0..nq {
+            if q[j] == b && q[(j + 1) % nq] == a {
+                // p: ..., a, b, ...  and q: ..., b, a, ...: walk p from b to a, then q's rest.
+                let mut ring = Vec::with_capacity(np + nq - 2);
+                for k in 0..np {
+                    ring.push(p[(i + 1 + k) % np]);
+                }
+                // ring ends with a; continue along q after a up to before b.
+                for k in 2..nq {
+                    ring.push(q[(j + k) % nq]);
+                }
+                return Some(ring);
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn gp(x: i32, y: i32, z: i32) -> GridPoint {
+        GridPoint { x, y, z }
+    }
+
+    fn area(v: &[[f64; 2]]) -> f64 {
+        let n = v.len();
+        (0..n)
+            .map(|k| v[k][0] * v[(k + 1) % n][1] - v[(k + 1) % n][0] * v[k][1])
+            .sum::<f64>()
+            / 2.0
+    }
+
+    /// Exact validity: every vertex is inside or on every line of the piece.
+    fn assert_valid(p: &Piece) {
+        assert!(p.len() >= 3);
+        for k in 0..p.len() {
+            for l in &p.lines {
+                assert_ne!(p.vertex_line_sign(k, l), Ordering::Less, "{p:?}");
+            }
+        }
+        assert!(area(&p.vertices_f64()) > 0.0);
+    }
+
+    fn square() -> Piece {
+        let c = [gp(0, 0, 0), gp(100, 0, 0), gp(100, 100, 0), gp(0, 100, 0)];
+        let support = Plane::through(c[0], c[1], c[2]).unwrap();
+        Piece::from_convex(0, support, &c)
+    }
+
+    #[test]
+    fn split_square_by_line_through_the_middle() {
+        let sq = square();
+        let l = Line::Edge(Plane::edge(gp(50, -10, 0), gp(50, 200, 0)).unwrap());
+        let Split::Both(neg, pos) = sq.split_by_line(&l) else {
+            panic!()
+        };
+        assert_valid(&neg);
+        assert_valid(&pos);
+        // Positive side of an edge p→q is its left: x < 50.
+        let (an, ap) = (area(&neg.vertices_f64()), area(&pos.vertices_f64()));
+        assert_eq!((an, ap), (5000.0, 5000.0));
+        assert!(pos.vertices_f64().iter().all(|v| v[0] <= 50.0));
+    }
+
+    #[test]
+    fn split_through_vertices_keeps_them_exact() {
+        let sq = square();
+        let l = Line::Edge(Plane::edge(gp(0, 0, 0), gp(100, 100, 0)).unwrap());
+        let Split::Both(neg, pos) = sq.split_by_line(&l) else {
+            panic!()
+        };
+        assert_eq!((neg.len(), pos.len()), (3, 3));
+        // The diagonal's ends are the square's corners, kept as grid points.
+        assert!(neg.corners.iter().all(|c| c.is_some()));
+        assert!(pos.corners.iter().all(|c| c.is_some()));
+        // A line touching at a corner only does not split.
+        // Its left (positive) side is x + y > 200: the square is on the negative side.
+        let t = Line::Edge(Plane::edge(gp(100, 100, 0), gp(200, 0, 0)).unwrap());
+        assert_eq!(sq.split_by_line(&t), Split::Negative);
+    }
+
+    #[test]
+    fn split_by_a_plane_keeps_the_nearer_part_negative() {
+        // The square at z = 0 (tilted support through the corners), cut by the plane z = x - 50:
+        // for x < 50 the square is above that plane (farther), for x > 50 below it (nearer).
+        let sq = square();
+        let q = Plane::through(gp(50, 0, 0), gp(50, 100, 0), gp(0, 0, -50)).unwrap();
+        assert!(q.c > 0);
+        let Split::Both(near, far) = sq.split_by_plane(&q) else {
+            panic!()
+        };
+        assert_valid(&near);
+        assert_valid(&far);
+        assert!(
+            near.vertices_f64().iter().all(|v| v[0] >= 50.0),
+            "{:?}",
+            near.vertices_f64()
+        );
+        assert!(far.vertices_f64().iter().all(|v| v[0] <= 50.0));
+        assert_eq!(sq.split_by_plane(&sq.support), Split::On);
+    }
+
+    #[test]
+    fn repeated_random_splits_stay_valid_and_keep_area() {
+        let mut seed = 42u64;
+        let mut rnd = |m: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * m as u64 + 1)) as i64 - m
+        };
+        for _ in 0..200 {
+            let mut pieces = vec![square()];
+            for _ in 0..6 {
+                let (a, b) = (
+                    gp(rnd(150) as i32, rnd(150) as i32, 0),
+                    gp(rnd(150) as i32, rnd(150) as i32, 0),
+                );
+                let Some(e) = Plane::edge(a, b) else { continue };
+                let l = Line::Edge(e);
+                let mut next = Vec::new();
+                for p in &pieces {
+                    match p.split_by_line(&l) {
+                        Split::Both(n, q) => {
+                            assert_valid(&n);
+                            assert_valid(&q);
+                            next.push(n);
+                            next.push(q);
+                        }
+                        _ => next.push(p.clone()),
+                    }
+                }
+                pieces = next;
+            }
+            let total: f64 = pieces.iter().map(|p| area(&p.vertices_f64())).sum();
+            assert!((total - 10000.0).abs() < 1e-6, "{total}");
+        }
+    }
+
+    #[test]
+    fn convex_pieces_of_an_l_shape() {
+        let l = [
+            gp(0, 0, 0),
+            gp(20, 0, 0),
+            gp(20, 10, 0),
+            gp(10, 10, 0),
+            gp(10, 20, 0),
+            gp(0, 20, 0),
+        ];
+        let pieces = convex_pieces(&l);
+        assert_eq!(pieces.len(), 2);
+        let total: f64 = pieces
+            .iter()
+            .map(|p| {
+                area(
+                    &p.iter()
+                        .map(|q| [q.x as f64, q.y as f64])
+                        .collect::<Vec<_>>(),
+                )
+            })
+            .sum();
+        assert_eq!(total, 300.0);
+        let square = [gp(0, 0, 0), gp(1, 0, 0), gp(1, 1, 0), gp(0, 1, 0)];
+        assert_eq!(convex_pieces(&square), vec![square.to_vec()]);
+    }
+}
