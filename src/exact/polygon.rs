@@ -31,6 +31,7 @@ pub struct Piece {
 
 /// Where a piece lies relative to a plane or a line.
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[allow(clippy::large_enum_variant)] // returned once per split and taken apart at once
 pub enum Split {
     /// Entirely on the negative side (touching allowed).
     Negative,
