@@ -1,0 +1,3 @@
+//! Visibility strategies: object-space methods that turn screen polygons into exact visible sets.
+
+pub mod bsp;

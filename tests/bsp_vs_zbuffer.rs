@@ -1,0 +1,136 @@
+//! The BSP visible set against the z-buffer: the same face id at every interior pixel.
+
+mod support;
+
+use glam::DVec3;
+use sightline::camera::{Camera, CameraSpec, NamedView, Projection};
+use sightline::pipeline::render_zbuffer;
+use sightline::project::CullMode;
+use sightline::scene::{Scene, SceneBuilder};
+use sightline::visibility::bsp::Bsp;
+use support::*;
+
+/// Interior mismatches between the BSP's exact ids and the z-buffer's.
+fn mismatches(scene: &Scene, camera: &Camera) -> (usize, usize) {
+    let (prepared, zb) = render_zbuffer(scene, camera, CullMode::Auto, |_| {});
+    let z_ids = zb.face_ids(&prepared.screen);
+    let mut bsp = Bsp::build(&prepared.screen);
+    let visible = bsp.visible_set();
+    let b_ids = visible.face_ids(&prepared.screen);
+    let (w, h) = (camera.width as usize, camera.height as usize);
+    let interior = interior_pixels(&z_ids, w, h);
+    let bad: Vec<_> = interior
+        .iter()
+        .filter(|&&k| z_ids[k] != b_ids[k])
+        .map(|&k| (k % w, k / w, z_ids[k], b_ids[k]))
+        .collect();
+    assert!(
+        bad.is_empty(),
+        "{} interior mismatches, first {:?}; stats {:?}",
+        bad.len(),
+        &bad[..bad.len().min(5)],
+        bsp.stats
+    );
+    (interior.len(), bsp.stats.fragments)
+}
+
+#[test]
+fn closed_meshes_and_interpenetration() {
+    let mut b = SceneBuilder::new("boxes");
+    add_box(
+        &mut b,
+        DVec3::new(-1.0, -1.0, -1.0),
+        DVec3::new(0.3, 0.5, 0.2),
+        "a",
+    );
+    add_box(
+        &mut b,
+        DVec3::new(0.1, -0.4, -0.3),
+        DVec3::new(1.2, 0.9, 0.9),
+        "b",
+    );
+    add_sphere(&mut b, DVec3::new(-0.2, 0.6, 0.6), 0.55, 16, 8);
+    let scene = b.finish().unwrap();
+    for (view, ortho) in [
+        (NamedView::Iso, false),
+        (NamedView::Front, true),
+        (NamedView::Top, false),
+    ] {
+        let cam = Camera::fit(view, scene.bounds().unwrap(), ortho, 40.0, 120, 90);
+        mismatches(&scene, &cam);
+    }
+}
+
+#[test]
+fn random_triangle_soups() {
+    for seed in 1..=6 {
+        let scene = random_triangles(40, seed);
+        let cam = Camera {
+            eye: DVec3::new(0.4, 0.7, 4.0),
+            target: DVec3::ZERO,
+            up: DVec3::Y,
+            projection: Projection::Perspective { fovy_deg: 50.0 },
+            near: 1.0,
+            far: 8.0,
+            width: 100,
+            height: 80,
+        };
+        mismatches(&scene, &cam);
+    }
+}
+
+#[test]
+fn fixtures() {
+    for f in [
+        "fixtures/seed_two_triangles.x3d",
+        "fixtures/primitives.x3d",
+        "fixtures/indexed.x3d",
+        "fixtures/cube.obj",
+        "fixtures/two_objects.obj",
+    ] {
+        let scene = sightline::load(std::path::Path::new(f), None).unwrap();
+        let cam = CameraSpec {
+            size: Some((96, 72)),
+            ..CameraSpec::default()
+        }
+        .resolve(scene.bounds().unwrap(), scene.viewpoint.as_ref())
+        .unwrap();
+        mismatches(&scene, &cam);
+    }
+}
+
+mod random_scenes {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+        /// Random soups (interpenetrating, cyclic overlaps) under random cameras, some with the
+        /// eye among the triangles.
+        #[test]
+        fn bsp_matches_zbuffer_at_interior_pixels(
+            seed in any::<u64>(),
+            n in 1usize..20,
+            eye in prop::array::uniform3(-4.0f64..4.0),
+            ortho in any::<bool>(),
+            fov in 20.0f64..100.0,
+        ) {
+            let scene = random_triangles(n, seed);
+            let eye = DVec3::from_array(eye);
+            prop_assume!(eye.length() > 0.3);
+            let cam = Camera {
+                eye,
+                target: DVec3::ZERO,
+                up: if eye.cross(DVec3::Y).length() > 1e-3 { DVec3::Y } else { DVec3::X },
+                projection: if ortho { Projection::Orthographic { height: 3.0 } } else { Projection::Perspective { fovy_deg: fov } },
+                near: if ortho { -6.0 } else { 0.2 },
+                far: 12.0,
+                width: 48,
+                height: 40,
+            };
+            prop_assume!(cam.validate().is_ok());
+            mismatches(&scene, &cam);
+        }
+    }
+}
