@@ -39,8 +39,9 @@ pub struct BspStats {
     pub coverage_nodes: usize,
 }
 
+/// A splitter's node. The viewer is on every support plane's negative side, so the walk needs
+/// no plane test: the plane is only used while building.
 struct Node {
-    plane: Plane,
     /// Pieces lying in `plane`, front to back (tie rule applied).
     on: Vec<Piece>,
     neg: Option<u32>,
@@ -158,7 +159,6 @@ impl Bsp {
             stats.depth = stats.depth.max(depth);
             let index = nodes.len() as u32;
             nodes.push(Node {
-                plane,
                 on,
                 neg: None,
                 pos: None,
