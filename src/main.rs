@@ -149,8 +149,19 @@ struct BenchArgs {
     /// Runs per stage; the median is reported.
     #[arg(long, default_value_t = 5)]
     repeat: usize,
+    /// Method to time after projection.
+    #[arg(long, value_enum, default_value_t = BenchMethod::Zbuffer)]
+    method: BenchMethod,
     #[command(flatten)]
     camera: CameraArgs,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum BenchMethod {
+    /// The exact z-buffer.
+    Zbuffer,
+    /// 3D BSP + coverage: the exact visible set.
+    Bsp,
 }
 
 fn parse_vec3(s: &str) -> Result<DVec3, String> {
@@ -358,23 +369,50 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
         (None, None) => unreachable!("clap requires an input or --sphere"),
     };
     let camera = camera_for(&a.camera, &scene)?;
-    let (mut project_times, mut raster_times) = (Vec::new(), Vec::new());
-    let mut last = None;
+    let (mut project_times, mut method_times) = (Vec::new(), Vec::new());
+    let mut report = String::new();
     let bar = progress_bar(repeat as u64, "bench");
+    let mut screen_stats = None;
     for k in 0..repeat {
         let t = Instant::now();
         let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
         project_times.push(t.elapsed().as_secs_f64());
+        let fallbacks_before = sightline::exact::predicates::fallback_count();
         let t = Instant::now();
-        let zb = sightline::raster::zbuffer::render(&prepared.screen, |_| {});
-        raster_times.push(t.elapsed().as_secs_f64());
-        last = Some((prepared, zb));
+        report = match a.method {
+            BenchMethod::Zbuffer => {
+                let zb = sightline::raster::zbuffer::render(&prepared.screen, |_| {});
+                method_times.push(t.elapsed().as_secs_f64());
+                format!(
+                    "fragments {}, exact fallbacks: edge {} depth {}",
+                    zb.stats.fragments, zb.stats.column_fallbacks, zb.stats.depth_fallbacks
+                )
+            }
+            BenchMethod::Bsp => {
+                let mut bsp = sightline::visibility::bsp::Bsp::build(&prepared.screen);
+                let visible = bsp.visible_set();
+                method_times.push(t.elapsed().as_secs_f64());
+                let st = &bsp.stats;
+                format!(
+                    "pieces {} -> fragments {} ({:.3} per polygon), BSP nodes {} depth {}, visible pieces {}, coverage nodes {}, exact fallbacks {}",
+                    st.pieces,
+                    st.fragments,
+                    st.fragments as f64 / st.polygons.max(1) as f64,
+                    st.nodes,
+                    st.depth,
+                    visible.pieces.len(),
+                    st.coverage_nodes,
+                    sightline::exact::predicates::fallback_count() - fallbacks_before
+                )
+            }
+        };
+        screen_stats = Some(prepared.screen.stats);
         bar.set_position(k as u64 + 1);
     }
     bar.finish_and_clear();
-    let (prepared, zb) = last.expect("repeat >= 1");
+    let st = screen_stats.expect("repeat >= 1");
     let tris: usize = scene.faces.iter().map(|f| f.len as usize - 2).sum();
-    let (tp, tr) = (median(project_times), median(raster_times));
+    let (tp, tm) = (median(project_times), median(method_times));
     println!(
         "scene: {} faces ({} triangles), {}x{}, {} runs, medians:",
         scene.faces.len(),
@@ -385,36 +423,22 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
     );
     if !load_times.is_empty() {
         let tl = median(load_times);
-        println!(
-            "  load             {:9.4} s  {:12.0} triangles/s",
-            tl,
-            tris as f64 / tl
-        );
+        println!("  load             {:9.4} s  {:12.0} triangles/s", tl, tris as f64 / tl);
     }
+    let name = match a.method {
+        BenchMethod::Zbuffer => "z-buffer",
+        BenchMethod::Bsp => "bsp",
+    };
+    println!("  project + cull   {:9.4} s  {:12.0} triangles/s", tp, tris as f64 / tp);
+    println!("  {name:16} {:9.4} s  {:12.0} triangles/s", tm, tris as f64 / tm);
     println!(
-        "  project + cull   {:9.4} s  {:12.0} triangles/s",
-        tp,
-        tris as f64 / tp
+        "  total            {:9.4} s  {:12.0} triangles/s",
+        tp + tm,
+        tris as f64 / (tp + tm)
     );
     println!(
-        "  z-buffer         {:9.4} s  {:12.0} triangles/s",
-        tr,
-        tris as f64 / tr
-    );
-    println!(
-        "  project + z-buffer {:7.4} s  {:12.0} triangles/s",
-        tp + tr,
-        tris as f64 / (tp + tr)
-    );
-    let st = &prepared.screen.stats;
-    println!(
-        "  on screen {} (back faces culled {}, frustum culled {}), fragments {}, exact fallbacks: edge {} depth {}",
-        st.visible_polys,
-        st.backface_culled,
-        st.frustum_culled,
-        zb.stats.fragments,
-        zb.stats.column_fallbacks,
-        zb.stats.depth_fallbacks
+        "  on screen {} (back faces culled {}, frustum culled {}); {}",
+        st.visible_polys, st.backface_culled, st.frustum_culled, report
     );
     Ok(())
 }
