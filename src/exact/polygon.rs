@@ -92,6 +92,11 @@ impl Piece {
 
     /// The sign of line `l` at vertex k.
     pub fn vertex_line_sign(&self, k: usize, l: &Line) -> Ordering {
+        // A vertex lies on the lines that define it: no arithmetic needed.
+        let [a, b] = self.vertex_lines(k);
+        if a == l || b == l || *a == negate(l) || *b == negate(l) {
+            return Ordering::Equal;
+        }
         if let (Some([x, y]), Line::Edge(p)) = (self.corners[k], l) {
             let v = p.a as i128 * x as i128 + p.b as i128 * y as i128 + p.d;
             return v.cmp(&0);

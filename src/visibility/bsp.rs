@@ -78,11 +78,40 @@ pub fn initial_pieces(screen: &ScreenScene) -> Vec<Piece> {
     out
 }
 
-/// How many splits and how unbalanced a partition by `plane` would be, over a sample.
-fn score(plane: &Plane, sample: &[Piece]) -> i64 {
+/// What a node splits by.
+#[derive(Clone, Copy, Debug)]
+enum Splitter {
+    /// A piece's support plane: the viewer is on its negative side.
+    Support(Plane),
+    /// A vertical plane (a screen line): its two sides do not overlap on screen, so their order
+    /// does not matter. These keep the tree balanced where support planes would not (the faces
+    /// of a convex mesh never separate one another).
+    Screen(Line),
+}
+
+impl Splitter {
+    fn split(&self, p: &Piece) -> Split {
+        match self {
+            Splitter::Support(q) => p.split_by_plane(q),
+            Splitter::Screen(l) => p.split_by_line(l),
+        }
+    }
+}
+
+/// The f64 screen bounds of a piece (grid units), widened by a unit: a filter, never a decision.
+fn bounds(p: &Piece) -> [f64; 4] {
+    let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+    for [x, y] in p.vertices_f64() {
+        b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+    }
+    [b[0] - 1.0, b[1] - 1.0, b[2] + 1.0, b[3] + 1.0]
+}
+
+/// How many splits and how unbalanced a partition would be, over a sample: lower is better.
+fn score(splitter: &Splitter, sample: &[&Piece]) -> i64 {
     let (mut neg, mut pos, mut split) = (0i64, 0i64, 0i64);
     for p in sample {
-        match p.split_by_plane(plane) {
+        match splitter.split(p) {
             Split::Negative => neg += 1,
             Split::Positive => pos += 1,
             Split::Both(..) => split += 1,
@@ -92,21 +121,45 @@ fn score(plane: &Plane, sample: &[Piece]) -> i64 {
     8 * split + (neg - pos).abs()
 }
 
-/// Picks a splitter: among a few candidates spread through the list, the one with the fewest
-/// splits and the best balance on a sample.
-fn choose_splitter(pieces: &[Piece]) -> usize {
+/// The vertical line x = m (or y = m), positive on the larger side.
+fn screen_line(axis: usize, m: i64) -> Line {
+    let (a, b) = if axis == 0 { (1, 0) } else { (0, 1) };
+    Line::Edge(Plane {
+        a,
+        b,
+        c: 0,
+        d: -(m as i128),
+    })
+}
+
+/// Candidate splitters: a few support planes spread through the list, and the screen lines
+/// through the median of the sample's centres in x and in y. The best on a sample wins.
+fn candidates(pieces: &[Piece]) -> (Vec<Splitter>, Vec<&Piece>) {
     const CANDIDATES: usize = 6;
     const SAMPLE: usize = 48;
-    if pieces.len() <= 2 {
-        return 0;
-    }
     let step = pieces.len().div_ceil(SAMPLE).max(1);
-    let sample: Vec<Piece> = pieces.iter().step_by(step).take(SAMPLE).cloned().collect();
+    let sample: Vec<&Piece> = pieces.iter().step_by(step).take(SAMPLE).collect();
     let cstep = pieces.len().div_ceil(CANDIDATES).max(1);
-    (0..pieces.len())
+    let mut out: Vec<Splitter> = (0..pieces.len())
         .step_by(cstep)
-        .min_by_key(|&i| (score(&pieces[i].support, &sample), i))
-        .unwrap_or(0)
+        .map(|i| Splitter::Support(pieces[i].support))
+        .collect();
+    if pieces.len() > 2 {
+        let centres: Vec<[f64; 2]> = sample
+            .iter()
+            .map(|p| {
+                let b = bounds(p);
+                [(b[0] + b[2]) / 2.0, (b[1] + b[3]) / 2.0]
+            })
+            .collect();
+        for axis in 0..2 {
+            let mut v: Vec<f64> = centres.iter().map(|c| c[axis]).collect();
+            v.sort_by(f64::total_cmp);
+            let m = v[v.len() / 2].round() as i64;
+            out.push(Splitter::Screen(screen_line(axis, m)));
+        }
+    }
+    (out, sample)
 }
 
 /// The tie order of coplanar pieces, front first: larger face id, then later polygon.
@@ -115,6 +168,23 @@ fn tie_key(screen: &ScreenScene, p: &Piece) -> (std::cmp::Reverse<u32>, std::cmp
         std::cmp::Reverse(screen.polys[p.poly as usize].id),
         std::cmp::Reverse(p.poly),
     )
+}
+
+/// Partitions `list` by `splitter`: (negative, on, positive).
+fn partition(splitter: &Splitter, list: Vec<Piece>) -> (Vec<Piece>, Vec<Piece>, Vec<Piece>) {
+    let (mut neg, mut on, mut pos) = (Vec::new(), Vec::new(), Vec::new());
+    for p in list {
+        match splitter.split(&p) {
+            Split::Negative => neg.push(p),
+            Split::Positive => pos.push(p),
+            Split::On => on.push(p),
+            Split::Both(n, q) => {
+                neg.push(n);
+                pos.push(q);
+            }
+        }
+    }
+    (neg, on, pos)
 }
 
 impl Bsp {
@@ -130,30 +200,37 @@ impl Bsp {
         if pieces.is_empty() {
             return Bsp { nodes, stats };
         }
-        // Work list: (parent link to fill, depth, pieces).
         enum Link {
             Root,
             Neg(u32),
             Pos(u32),
         }
         let mut work: Vec<(Link, usize, Vec<Piece>)> = vec![(Link::Root, 1, pieces)];
-        while let Some((link, depth, mut list)) = work.pop() {
-            let s = choose_splitter(&list);
-            let splitter = list.swap_remove(s);
-            let plane = splitter.support;
-            let mut on = vec![splitter];
-            let (mut neg, mut pos) = (Vec::new(), Vec::new());
-            for p in list {
-                match p.split_by_plane(&plane) {
-                    Split::Negative => neg.push(p),
-                    Split::Positive => pos.push(p),
-                    Split::On => on.push(p),
-                    Split::Both(n, q) => {
-                        neg.push(n);
-                        pos.push(q);
-                    }
+        while let Some((link, depth, list)) = work.pop() {
+            let n = list.len();
+            let (mut neg, mut on, mut pos) = if n == 1 {
+                (Vec::new(), list, Vec::new())
+            } else {
+                let (cands, sample) = candidates(&list);
+                let mut ranked: Vec<(i64, usize)> = cands
+                    .iter()
+                    .enumerate()
+                    .map(|(i, c)| (score(c, &sample), i))
+                    .collect();
+                ranked.sort_unstable();
+                let best = cands[ranked[0].1];
+                let (neg, on, pos) = partition(&best, list);
+                if matches!(best, Splitter::Screen(_)) && (neg.len() >= n || pos.len() >= n) {
+                    // The screen line did not separate anything: use the first support plane,
+                    // which always removes at least its own piece.
+                    let mut all = neg;
+                    all.extend(pos);
+                    let first = all[0].support;
+                    partition(&Splitter::Support(first), all)
+                } else {
+                    (neg, on, pos)
                 }
-            }
+            };
             on.sort_by_key(|p| tie_key(screen, p));
             stats.fragments += on.len();
             stats.depth = stats.depth.max(depth);
@@ -169,10 +246,10 @@ impl Bsp {
                 Link::Pos(parent) => nodes[parent as usize].pos = Some(index),
             }
             if !neg.is_empty() {
-                work.push((Link::Neg(index), depth + 1, neg));
+                work.push((Link::Neg(index), depth + 1, std::mem::take(&mut neg)));
             }
             if !pos.is_empty() {
-                work.push((Link::Pos(index), depth + 1, pos));
+                work.push((Link::Pos(index), depth + 1, std::mem::take(&mut pos)));
             }
         }
         stats.nodes = nodes.len();
@@ -215,84 +292,156 @@ impl Bsp {
         all
     }
 
-    /// The exact visible set: pieces front to back through the coverage map.
+    /// The exact visible set: pieces front to back, each minus the visible pieces in front.
     pub fn visible_set(&mut self) -> VisibleSet {
-        let mut coverage = Coverage::new();
-        let mut visible = Vec::new();
-        self.front_to_back(|p| coverage.insert(p.clone(), &mut visible));
-        self.stats.visible_pieces = visible.len();
-        self.stats.coverage_nodes = coverage.nodes.len();
-        VisibleSet { pieces: visible }
+        let mut order = Vec::with_capacity(self.stats.fragments);
+        self.front_to_back(|p| order.push(p.clone()));
+        let mut coverage = Coverage::new(&order);
+        for p in order {
+            coverage.insert(p);
+        }
+        self.stats.visible_pieces = coverage.visible.len();
+        VisibleSet {
+            pieces: coverage.visible,
+        }
     }
 }
 
-/// The covered part of the screen as a 2D BSP: leaves are covered (`In`) or not (`Out`).
+/// What is already visible, bucketed on a uniform screen grid so that a new piece meets only the
+/// pieces whose bounds overlap its own. Subtraction is exact: a piece is split by the lines of
+/// each visible piece it may overlap, and the part inside all of them is hidden.
 struct Coverage {
-    nodes: Vec<Cell>,
-}
-
-enum Cell {
-    Split { line: Line, neg: u32, pos: u32 },
-    In,
-    Out,
+    visible: Vec<Piece>,
+    bounds: Vec<[f64; 4]>,
+    origin: [f64; 2],
+    cell: [f64; 2],
+    cells: usize,
+    buckets: Vec<Vec<u32>>,
+    /// Per visible piece, the last query that met it (dedupes across buckets).
+    seen: Vec<u32>,
+    query: u32,
 }
 
 impl Coverage {
-    fn new() -> Coverage {
+    fn new(pieces: &[Piece]) -> Coverage {
+        let mut all = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+        for p in pieces {
+            let b = bounds(p);
+            all = [all[0].min(b[0]), all[1].min(b[1]), all[2].max(b[2]), all[3].max(b[3])];
+        }
+        let cells = ((pieces.len() as f64).sqrt() as usize).clamp(1, 512);
+        let size = [
+            ((all[2] - all[0]) / cells as f64).max(1.0),
+            ((all[3] - all[1]) / cells as f64).max(1.0),
+        ];
         Coverage {
-            nodes: vec![Cell::Out],
+            visible: Vec::new(),
+            bounds: Vec::new(),
+            origin: [all[0], all[1]],
+            cell: size,
+            cells,
+            buckets: vec![Vec::new(); cells * cells],
+            seen: Vec::new(),
+            query: 0,
         }
     }
 
-    /// Files `piece` down the tree: parts reaching uncovered cells are visible (pushed to `out`)
-    /// and carve their cell.
-    fn insert(&mut self, piece: Piece, out: &mut Vec<Piece>) {
-        let mut work = vec![(0u32, piece)];
-        while let Some((n, p)) = work.pop() {
-            match &self.nodes[n as usize] {
-                Cell::In => {}
-                Cell::Out => {
-                    self.carve(n, &p);
-                    out.push(p);
-                }
-                Cell::Split { line, neg, pos } => {
-                    let (neg, pos) = (*neg, *pos);
-                    match p.split_by_line(line) {
-                        Split::Negative => work.push((neg, p)),
-                        Split::Positive => work.push((pos, p)),
-                        Split::Both(a, b) => {
-                            work.push((neg, a));
-                            work.push((pos, b));
-                        }
-                        // No area on either side: nothing to draw.
-                        Split::On => {}
+    fn cell_range(&self, b: &[f64; 4]) -> (usize, usize, usize, usize) {
+        let c = |v: f64, o: f64, s: f64| (((v - o) / s).floor().max(0.0) as usize).min(self.cells - 1);
+        (
+            c(b[0], self.origin[0], self.cell[0]),
+            c(b[2], self.origin[0], self.cell[0]),
+            c(b[1], self.origin[1], self.cell[1]),
+            c(b[3], self.origin[1], self.cell[1]),
+        )
+    }
+
+    fn insert(&mut self, piece: Piece) {
+        let b = bounds(&piece);
+        let (i0, i1, j0, j1) = self.cell_range(&b);
+        self.query += 1;
+        let mut near: Vec<u32> = Vec::new();
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                for &v in &self.buckets[j * self.cells + i] {
+                    let vb = &self.bounds[v as usize];
+                    if self.seen[v as usize] != self.query
+                        && vb[0] < b[2]
+                        && b[0] < vb[2]
+                        && vb[1] < b[3]
+                        && b[1] < vb[3]
+                    {
+                        self.seen[v as usize] = self.query;
+                        near.push(v);
                     }
                 }
             }
         }
-    }
-
-    /// Replaces the uncovered leaf `n` by a chain of the piece's lines: outside each line an
-    /// uncovered leaf, inside all of them a covered one.
-    fn carve(&mut self, n: u32, p: &Piece) {
-        let mut at = n;
-        for (k, line) in p.lines.iter().enumerate() {
-            let out = self.nodes.len() as u32;
-            self.nodes.push(Cell::Out);
-            let next = self.nodes.len() as u32;
-            self.nodes.push(if k + 1 == p.lines.len() {
-                Cell::In
-            } else {
-                Cell::Out
-            });
-            self.nodes[at as usize] = Cell::Split {
-                line: *line,
-                neg: out,
-                pos: next,
-            };
-            at = next;
+        near.sort_unstable();
+        let mut parts = vec![piece];
+        for v in near {
+            let front = &self.visible[v as usize];
+            let mut next = Vec::with_capacity(parts.len());
+            for part in parts {
+                subtract(part, front, &mut next);
+            }
+            parts = next;
+            if parts.is_empty() {
+                return;
+            }
+        }
+        for part in parts {
+            let pb = bounds(&part);
+            let index = self.visible.len() as u32;
+            let (i0, i1, j0, j1) = self.cell_range(&pb);
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    self.buckets[j * self.cells + i].push(index);
+                }
+            }
+            self.visible.push(part);
+            self.bounds.push(pb);
+            self.seen.push(0);
         }
     }
+}
+
+/// Do two convex pieces have disjoint interiors? Exact: some edge line of one has the other
+/// entirely on its outer side (touching allowed); for convex polygons such a line exists
+/// whenever they do not overlap.
+fn separated(p: &Piece, q: &Piece) -> bool {
+    let outside = |a: &Piece, b: &Piece| {
+        a.lines
+            .iter()
+            .any(|l| (0..b.len()).all(|k| b.vertex_line_sign(k, l) != Ordering::Greater))
+    };
+    outside(q, p) || outside(p, q)
+}
+
+/// Pushes the parts of `piece` outside the convex `front` (exactly; touching is outside).
+fn subtract(piece: Piece, front: &Piece, out: &mut Vec<Piece>) {
+    if separated(&piece, front) {
+        out.push(piece);
+        return;
+    }
+    let mut inside = piece;
+    for line in &front.lines {
+        match inside.split_by_line(line) {
+            // Entirely outside this line of `front`: nothing of it is hidden.
+            Split::Negative => {
+                out.push(inside);
+                return;
+            }
+            Split::Positive => {}
+            Split::Both(outside, rest) => {
+                out.push(outside);
+                inside = rest;
+            }
+            // No area: nothing to keep.
+            Split::On => return,
+        }
+    }
+    // What is left is inside every line of `front`: hidden.
 }
 
 impl VisibleSet {
