@@ -3,6 +3,7 @@
 
 pub mod drawing;
 pub mod png;
+pub mod raster_drawing;
 
 use crate::error::Error;
 use std::io::Write;
