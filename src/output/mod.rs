@@ -4,6 +4,7 @@
 pub mod drawing;
 pub mod png;
 pub mod raster_drawing;
+pub mod svg;
 
 use crate::error::Error;
 use std::io::Write;
