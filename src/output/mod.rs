@@ -2,6 +2,7 @@
 //! target's directory, which is then renamed over the target. `-` means standard output.
 
 pub mod drawing;
+pub mod json;
 pub mod png;
 pub mod raster_drawing;
 pub mod svg;
