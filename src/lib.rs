@@ -15,3 +15,4 @@ pub mod output;
 pub mod pipeline;
 pub mod project;
 pub mod raster;
+pub mod visibility;
