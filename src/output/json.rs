@@ -1,6 +1,7 @@
 //! JSON output of a [`Drawing`], grouped by input face.
 //!
-//! Schema (keys in this order; pretty-printed; the same input gives the same bytes):
+//! Schema (keys in this order; pretty-printed, but each region and colour on one line, so a
+//! drawing stays near the size of its numbers; the same input gives the same bytes):
 //!
 //! ```text
 //! {
@@ -28,7 +29,9 @@
 use super::drawing::{DrawItem, Drawing};
 use crate::scene::{FaceId, Scene};
 use serde::Serialize;
+use serde_json::ser::{Formatter, PrettyFormatter};
 use std::collections::BTreeMap;
+use std::io::{self, Write};
 
 #[derive(Serialize)]
 struct Doc<'a> {
@@ -106,7 +109,141 @@ pub fn write_json(
         faces,
         stats,
     };
-    let mut out = serde_json::to_string_pretty(&doc).expect("JSON of plain data cannot fail");
-    out.push('\n');
-    out
+    let mut out = Vec::new();
+    let mut ser = serde_json::Serializer::with_formatter(&mut out, RingsInline::default());
+    doc.serialize(&mut ser)
+        .expect("JSON of plain data into memory cannot fail");
+    out.push(b'\n');
+    String::from_utf8(out).expect("serde_json writes UTF-8")
+}
+
+/// serde_json's pretty layout, except that an array nested [`INLINE_DEPTH`] containers deep or
+/// more, and everything inside it, is written compactly on one line.
+#[derive(Default)]
+struct RingsInline {
+    pretty: PrettyFormatter<'static>,
+    /// Containers (arrays and objects) open.
+    depth: usize,
+    /// The container depth at which compact writing began.
+    compact_from: Option<usize>,
+}
+
+/// Container nesting (objects and arrays, the document itself 1) from which arrays are written
+/// on one line: in our schema a face's colours and each of its regions.
+const INLINE_DEPTH: usize = 5;
+
+impl Formatter for RingsInline {
+    fn begin_array<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        self.depth += 1;
+        if self.compact_from.is_none() && self.depth >= INLINE_DEPTH {
+            self.compact_from = Some(self.depth);
+        }
+        match self.compact_from {
+            Some(_) => w.write_all(b"["),
+            None => self.pretty.begin_array(w),
+        }
+    }
+
+    fn end_array<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        let r = match self.compact_from {
+            Some(_) => w.write_all(b"]"),
+            None => self.pretty.end_array(w),
+        };
+        self.close();
+        r
+    }
+
+    fn begin_array_value<W: ?Sized + Write>(&mut self, w: &mut W, first: bool) -> io::Result<()> {
+        match self.compact_from {
+            Some(_) if first => Ok(()),
+            Some(_) => w.write_all(b","),
+            None => self.pretty.begin_array_value(w, first),
+        }
+    }
+
+    fn end_array_value<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        match self.compact_from {
+            Some(_) => Ok(()),
+            None => self.pretty.end_array_value(w),
+        }
+    }
+
+    fn begin_object<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        self.depth += 1;
+        match self.compact_from {
+            Some(_) => w.write_all(b"{"),
+            None => self.pretty.begin_object(w),
+        }
+    }
+
+    fn end_object<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        let r = match self.compact_from {
+            Some(_) => w.write_all(b"}"),
+            None => self.pretty.end_object(w),
+        };
+        self.close();
+        r
+    }
+
+    fn begin_object_key<W: ?Sized + Write>(&mut self, w: &mut W, first: bool) -> io::Result<()> {
+        match self.compact_from {
+            Some(_) if first => Ok(()),
+            Some(_) => w.write_all(b","),
+            None => self.pretty.begin_object_key(w, first),
+        }
+    }
+
+    fn begin_object_value<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        match self.compact_from {
+            Some(_) => w.write_all(b":"),
+            None => self.pretty.begin_object_value(w),
+        }
+    }
+
+    fn end_object_value<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        match self.compact_from {
+            Some(_) => Ok(()),
+            None => self.pretty.end_object_value(w),
+        }
+    }
+}
+
+impl RingsInline {
+    /// Leaves a container: compact writing ends with the container that began it.
+    fn close(&mut self) {
+        if self.compact_from == Some(self.depth) {
+            self.compact_from = None;
+        }
+        self.depth -= 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn layout(v: &serde_json::Value) -> String {
+        let mut out = Vec::new();
+        let mut ser = serde_json::Serializer::with_formatter(&mut out, RingsInline::default());
+        v.serialize(&mut ser).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
+    #[test]
+    fn deep_arrays_are_inline_the_rest_pretty_and_it_parses_back() {
+        let v = serde_json::json!({
+            "a": [{"b": [[1.5, -2], [3, {"k": [4]}]], "c": {"d": [1]}}, [[2]]],
+            "e": [],
+            "f": {}
+        });
+        let text = layout(&v);
+        // Arrays in 5 containers or more (the document, a, a's object, b or c, ...) are inline.
+        assert_eq!(
+            text,
+            "{\n  \"a\": [\n    {\n      \"b\": [\n        [1.5,-2],\n        [3,{\"k\":[4]}]\n      \
+             ],\n      \"c\": {\n        \"d\": [1]\n      }\n    },\n    [\n      [\n        \
+             2\n      ]\n    ]\n  ],\n  \"e\": [],\n  \"f\": {}\n}"
+        );
+        assert_eq!(serde_json::from_str::<serde_json::Value>(&text).unwrap(), v);
+    }
 }
