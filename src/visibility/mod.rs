@@ -32,8 +32,13 @@ pub trait VisibilityMethod {
     /// True for methods whose result is exact (interior mismatch against the z-buffer must be 0).
     fn exact(&self) -> bool;
     /// Computes the drawing of `screen` (the projection of `scene` by `camera`).
-    fn run(&self, scene: &Scene, screen: &ScreenScene, camera: &Camera, fill: Fill)
-    -> VisibilityResult;
+    fn run(
+        &self,
+        scene: &Scene,
+        screen: &ScreenScene,
+        camera: &Camera,
+        fill: Fill,
+    ) -> VisibilityResult;
 }
 
 /// What a method produced: the drawing and its own counters (timings, splits, fallbacks).
