@@ -21,7 +21,7 @@ use std::fmt::Write;
 /// How the SVG is written.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SvgOptions {
-    /// Outline every region with this colour (linear RGB in [0,1]) and width (pixels).
+    /// Outline every region with this colour (linear RGB, 0 to 1) and width (pixels).
     pub stroke: Option<([f64; 3], f64)>,
     /// `shape-rendering="crispEdges"`: no anti-aliasing in viewers that honour it, so face-id
     /// colours stay exact up to the region edges.
@@ -87,7 +87,7 @@ pub fn num(x: f64) -> String {
     format!("{}", x + 0.0)
 }
 
-/// `#rrggbb` of a linear [0,1] colour, 8-bit rounded.
+/// `#rrggbb` of a linear colour (0 to 1), 8-bit rounded.
 pub fn hex(c: [f64; 3]) -> String {
     let [r, g, b] = to_u8(c);
     format!("#{r:02x}{g:02x}{b:02x}")
