@@ -2,7 +2,10 @@
 //! target's directory, which is then renamed over the target. `-` means standard output.
 
 pub mod drawing;
+pub mod json;
 pub mod png;
+pub mod raster_drawing;
+pub mod svg;
 
 use crate::error::Error;
 use std::io::Write;

@@ -17,8 +17,13 @@
 use crate::exact::polygon::{Piece, Split, convex_pieces};
 use crate::exact::predicates::{Line, line_side};
 use crate::exact::{GridPoint, Plane, Samples};
+use crate::camera::Camera;
+use crate::output::drawing::{DrawItem, Drawing};
+use crate::pipeline::Fill;
 use crate::project::ScreenScene;
+use crate::scene::Scene;
 use std::cmp::Ordering;
+use std::time::Instant;
 
 /// Counters of one BSP run.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -511,5 +516,96 @@ impl VisibleSet {
                 (p.poly, ring)
             })
             .collect()
+    }
+}
+
+/// The BSP strategy behind the common trait. Opaque scenes draw the exact visible set; a scene
+/// with translucent faces (under `Fill::Shade`) draws every fragment back to front, in the BSP's
+/// exact order, so each translucent fragment blends over what lies behind it.
+pub struct BspMethod;
+
+impl super::VisibilityMethod for BspMethod {
+    fn name(&self) -> &'static str {
+        "bsp"
+    }
+
+    fn exact(&self) -> bool {
+        true
+    }
+
+    fn run(
+        &self,
+        scene: &Scene,
+        screen: &ScreenScene,
+        camera: &Camera,
+        fill: Fill,
+    ) -> super::VisibilityResult {
+        let fallbacks = crate::exact::predicates::fallback_count();
+        let t = Instant::now();
+        let mut bsp = Bsp::build(screen);
+        let t_build = t.elapsed().as_secs_f64();
+        let translucent = fill == Fill::Shade
+            && screen
+                .polys
+                .iter()
+                .any(|p| scene.materials[scene.faces[p.face as usize].material as usize].transparency > 0.0);
+        let t = Instant::now();
+        let pieces = if translucent {
+            bsp.back_to_front()
+        } else {
+            bsp.visible_set().pieces
+        };
+        let t_visible = t.elapsed().as_secs_f64();
+        let s = Samples::new(screen.width, screen.height);
+        let items = pieces
+            .iter()
+            .map(|p| {
+                let poly = &screen.polys[p.poly as usize];
+                let (color, opacity) = super::face_paint(scene, poly.face as usize, camera, fill);
+                DrawItem {
+                    face: poly.id,
+                    material: scene.faces[poly.face as usize].material,
+                    rings: vec![
+                        p.vertices_f64()
+                            .into_iter()
+                            .map(|[x, y]| [s.col_of(x), s.row_of(y)])
+                            .collect(),
+                    ],
+                    color,
+                    opacity,
+                }
+            })
+            .collect();
+        let st = &bsp.stats;
+        let mut stats = serde_json::Map::new();
+        let mut put = |k: &str, v: serde_json::Value| {
+            stats.insert(k.to_string(), v);
+        };
+        put("polygons", st.polygons.into());
+        put("pieces", st.pieces.into());
+        put("fragments", st.fragments.into());
+        put(
+            "fragments_per_polygon",
+            (st.fragments as f64 / st.polygons.max(1) as f64).into(),
+        );
+        put("bsp_nodes", st.nodes.into());
+        put("bsp_depth", st.depth.into());
+        put("visible_pieces", st.visible_pieces.into());
+        put("translucent_painter_order", translucent.into());
+        put(
+            "exact_fallbacks",
+            (crate::exact::predicates::fallback_count() - fallbacks).into(),
+        );
+        put("build_seconds", t_build.into());
+        put("visible_seconds", t_visible.into());
+        super::VisibilityResult {
+            drawing: Drawing {
+                width: screen.width,
+                height: screen.height,
+                background: super::background(fill),
+                items,
+            },
+            stats,
+        }
     }
 }

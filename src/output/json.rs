@@ -1,0 +1,249 @@
+//! JSON output of a [`Drawing`], grouped by input face.
+//!
+//! Schema (keys in this order; pretty-printed, but each region and colour on one line, so a
+//! drawing stays near the size of its numbers; the same input gives the same bytes):
+//!
+//! ```text
+//! {
+//!   "width": W, "height": H,                  image size in pixels
+//!   "faces": [                                one entry per face id drawn, ids ascending
+//!     {
+//!       "id": 12,                             input face id (provenance)
+//!       "material": { "name": "...", "diffuse": [r,g,b], "emissive": [r,g,b],
+//!                     "transparency": t, "two_sided": false },
+//!       "regions": [                          this face's items, in painter order
+//!         [ [ [x,y], [x,y], ... ], ... ]      one region: its rings (even-odd), each ring
+//!       ],                                    closed implicitly (last point not repeated)
+//!       "draw_order": [ k, ... ]              per region, its index in the whole drawing's
+//!     }                                       back-to-front order (needed for translucency)
+//!   ],
+//!   "stats": { ... }                          the method's counters, keys sorted
+//! }
+//! ```
+//!
+//! A region is a list of rings rather than a single ring so that a region with holes keeps its
+//! even-odd meaning and two regions of one face are never mistaken for one ring set.
+//! Coordinates are pixels, y down, written as the shortest decimal that parses back to the same
+//! f64 (serde_json's); -0 is written as 0.
+
+use super::drawing::{DrawItem, Drawing};
+use crate::scene::{FaceId, Scene};
+use serde::Serialize;
+use serde_json::ser::{Formatter, PrettyFormatter};
+use std::collections::BTreeMap;
+use std::io::{self, Write};
+
+#[derive(Serialize)]
+struct Doc<'a> {
+    width: u32,
+    height: u32,
+    faces: Vec<FaceOut<'a>>,
+    stats: &'a serde_json::Map<String, serde_json::Value>,
+}
+
+#[derive(Serialize)]
+struct FaceOut<'a> {
+    id: FaceId,
+    material: MaterialOut<'a>,
+    regions: Vec<Region<'a>>,
+    draw_order: Vec<usize>,
+}
+
+#[derive(Serialize)]
+struct MaterialOut<'a> {
+    name: &'a str,
+    diffuse: [f64; 3],
+    emissive: [f64; 3],
+    transparency: f64,
+    two_sided: bool,
+}
+
+/// A region's rings, serialized with -0 normalized.
+struct Region<'a>(&'a DrawItem);
+
+impl Serialize for Region<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        // `x + 0.0` turns -0 into +0 and leaves every other value alone.
+        let rings: Vec<Vec<[f64; 2]>> = self
+            .0
+            .rings
+            .iter()
+            .map(|r| r.iter().map(|p| [p[0] + 0.0, p[1] + 0.0]).collect())
+            .collect();
+        rings.serialize(s)
+    }
+}
+
+/// The JSON document of `drawing`; `scene` supplies the materials, `stats` the counters.
+pub fn write_json(
+    drawing: &Drawing,
+    scene: &Scene,
+    stats: &serde_json::Map<String, serde_json::Value>,
+) -> String {
+    let mut by_face: BTreeMap<FaceId, Vec<usize>> = BTreeMap::new();
+    for (k, it) in drawing.items.iter().enumerate() {
+        by_face.entry(it.face).or_default().push(k);
+    }
+    let faces = by_face
+        .into_iter()
+        .map(|(id, order)| {
+            // The pieces of one face share its material; take the first item's.
+            let m = &scene.materials[drawing.items[order[0]].material as usize];
+            FaceOut {
+                id,
+                material: MaterialOut {
+                    name: &m.name,
+                    diffuse: m.diffuse,
+                    emissive: m.emissive,
+                    transparency: m.transparency,
+                    two_sided: m.two_sided,
+                },
+                regions: order.iter().map(|&k| Region(&drawing.items[k])).collect(),
+                draw_order: order,
+            }
+        })
+        .collect();
+    let doc = Doc {
+        width: drawing.width,
+        height: drawing.height,
+        faces,
+        stats,
+    };
+    let mut out = Vec::new();
+    let mut ser = serde_json::Serializer::with_formatter(&mut out, RingsInline::default());
+    doc.serialize(&mut ser)
+        .expect("JSON of plain data into memory cannot fail");
+    out.push(b'\n');
+    String::from_utf8(out).expect("serde_json writes UTF-8")
+}
+
+/// serde_json's pretty layout, except that an array nested [`INLINE_DEPTH`] containers deep or
+/// more, and everything inside it, is written compactly on one line.
+#[derive(Default)]
+struct RingsInline {
+    pretty: PrettyFormatter<'static>,
+    /// Containers (arrays and objects) open.
+    depth: usize,
+    /// The container depth at which compact writing began.
+    compact_from: Option<usize>,
+}
+
+/// Container nesting (objects and arrays, the document itself 1) from which arrays are written
+/// on one line: in our schema a face's colours and each of its regions.
+const INLINE_DEPTH: usize = 5;
+
+impl Formatter for RingsInline {
+    fn begin_array<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        self.depth += 1;
+        if self.compact_from.is_none() && self.depth >= INLINE_DEPTH {
+            self.compact_from = Some(self.depth);
+        }
+        match self.compact_from {
+            Some(_) => w.write_all(b"["),
+            None => self.pretty.begin_array(w),
+        }
+    }
+
+    fn end_array<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        let r = match self.compact_from {
+            Some(_) => w.write_all(b"]"),
+            None => self.pretty.end_array(w),
+        };
+        self.close();
+        r
+    }
+
+    fn begin_array_value<W: ?Sized + Write>(&mut self, w: &mut W, first: bool) -> io::Result<()> {
+        match self.compact_from {
+            Some(_) if first => Ok(()),
+            Some(_) => w.write_all(b","),
+            None => self.pretty.begin_array_value(w, first),
+        }
+    }
+
+    fn end_array_value<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        match self.compact_from {
+            Some(_) => Ok(()),
+            None => self.pretty.end_array_value(w),
+        }
+    }
+
+    fn begin_object<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        self.depth += 1;
+        match self.compact_from {
+            Some(_) => w.write_all(b"{"),
+            None => self.pretty.begin_object(w),
+        }
+    }
+
+    fn end_object<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        let r = match self.compact_from {
+            Some(_) => w.write_all(b"}"),
+            None => self.pretty.end_object(w),
+        };
+        self.close();
+        r
+    }
+
+    fn begin_object_key<W: ?Sized + Write>(&mut self, w: &mut W, first: bool) -> io::Result<()> {
+        match self.compact_from {
+            Some(_) if first => Ok(()),
+            Some(_) => w.write_all(b","),
+            None => self.pretty.begin_object_key(w, first),
+        }
+    }
+
+    fn begin_object_value<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        match self.compact_from {
+            Some(_) => w.write_all(b":"),
+            None => self.pretty.begin_object_value(w),
+        }
+    }
+
+    fn end_object_value<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        match self.compact_from {
+            Some(_) => Ok(()),
+            None => self.pretty.end_object_value(w),
+        }
+    }
+}
+
+impl RingsInline {
+    /// Leaves a container: compact writing ends with the container that began it.
+    fn close(&mut self) {
+        if self.compact_from == Some(self.depth) {
+            self.compact_from = None;
+        }
+        self.depth -= 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn layout(v: &serde_json::Value) -> String {
+        let mut out = Vec::new();
+        let mut ser = serde_json::Serializer::with_formatter(&mut out, RingsInline::default());
+        v.serialize(&mut ser).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
+    #[test]
+    fn deep_arrays_are_inline_the_rest_pretty_and_it_parses_back() {
+        let v = serde_json::json!({
+            "a": [{"b": [[1.5, -2], [3, {"k": [4]}]], "c": {"d": [1]}}, [[2]]],
+            "e": [],
+            "f": {}
+        });
+        let text = layout(&v);
+        // Arrays in 5 containers or more (the document, a, a's object, b or c, ...) are inline.
+        assert_eq!(
+            text,
+            "{\n  \"a\": [\n    {\n      \"b\": [\n        [1.5,-2],\n        [3,{\"k\":[4]}]\n      \
+             ],\n      \"c\": {\n        \"d\": [1]\n      }\n    },\n    [\n      [\n        \
+             2\n      ]\n    ]\n  ],\n  \"e\": [],\n  \"f\": {}\n}"
+        );
+        assert_eq!(serde_json::from_str::<serde_json::Value>(&text).unwrap(), v);
+    }
+}
