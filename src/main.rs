@@ -42,6 +42,11 @@ enum Command {
     /// Describe a scene: counts, closedness, bounds, culling, and which stages it needs.
     #[command(after_help = EXAMPLES)]
     Info(InfoArgs),
+    /// Compare a method's face ids with the z-buffer's at pixel centres, and time both.
+    #[command(
+        after_help = "Examples:\n  sightline compare fixtures/cube.obj --method bsp\n  sightline compare scene.obj --method painter --size 512x512"
+    )]
+    Compare(CompareArgs),
     /// Time each stage (load, project + cull, z-buffer) and report triangles per second.
     #[command(
         after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024"
@@ -97,8 +102,31 @@ struct CameraArgs {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 enum Method {
-    /// Z-buffer with exact coverage and depth at pixel centres (the reference).
+    /// Z-buffer with exact coverage and depth at pixel centres (the reference). PNG only.
     Zbuffer,
+    /// Exact visible polygons: 3D BSP with splitting, then a coverage pass (object space).
+    Bsp,
+    /// APPROXIMATE baseline: whole faces sorted by farthest depth, no splitting (as matplotlib's
+    /// mplot3d and GL2PS's simple sort do). Wrong on cyclic overlap and interpenetration.
+    Painter,
+}
+
+impl Method {
+    fn name(self) -> &'static str {
+        match self {
+            Method::Zbuffer => "zbuffer",
+            Method::Bsp => "bsp",
+            Method::Painter => "painter",
+        }
+    }
+}
+
+/// What the output file holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum OutputFormat {
+    Png,
+    Svg,
+    Json,
 }
 
 #[derive(Args)]
@@ -107,12 +135,21 @@ struct RenderArgs {
     input: InputArgs,
     #[command(flatten)]
     camera: CameraArgs,
-    /// Output PNG file, or - for standard output.
-    #[arg(short, long, value_name = "OUT.png")]
+    /// Output file (.png, .svg or .json), or - for standard output.
+    #[arg(short, long, value_name = "OUT")]
     output: PathBuf,
+    /// Output format (default: from the output's extension; for -, PNG for zbuffer, else SVG).
+    #[arg(long, value_enum)]
+    to: Option<OutputFormat>,
     /// Rendering method.
     #[arg(long, value_enum, default_value_t = Method::Zbuffer)]
     method: Method,
+    /// Outline every region in SVG output (black, 0.5 px).
+    #[arg(long)]
+    stroke: bool,
+    /// Ask SVG viewers not to anti-alias (shape-rendering="crispEdges").
+    #[arg(long)]
+    crisp: bool,
     /// Pixel colours: flat shading, or face id + 1 as 24-bit RGB on black.
     #[arg(long, value_enum, default_value_t = Fill::Shade)]
     fill: Fill,
@@ -125,6 +162,20 @@ struct RenderArgs {
     /// Print timings and counters to stderr.
     #[arg(long)]
     stats: bool,
+}
+
+#[derive(Args)]
+struct CompareArgs {
+    #[command(flatten)]
+    input: InputArgs,
+    #[command(flatten)]
+    camera: CameraArgs,
+    /// The method to check.
+    #[arg(long, value_enum, default_value_t = Method::Bsp)]
+    method: Method,
+    /// The reference (the z-buffer; the other image-space methods join later).
+    #[arg(long, value_enum, default_value_t = Method::Zbuffer)]
+    against: Method,
 }
 
 #[derive(Args)]
@@ -213,6 +264,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Render(a) => render(a),
         Command::Info(a) => info(a),
+        Command::Compare(a) => compare(a),
         Command::Bench(a) => bench(a),
     };
     match result {
@@ -287,35 +339,125 @@ fn camera_for(args: &CameraArgs, scene: &Scene) -> sightline::Result<Camera> {
     spec.resolve(bounds, scene.viewpoint.as_ref())
 }
 
+fn output_format(a: &RenderArgs) -> sightline::Result<OutputFormat> {
+    if let Some(f) = a.to {
+        return Ok(f);
+    }
+    let ext = a
+        .output
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    Ok(match ext.as_deref() {
+        Some("png") => OutputFormat::Png,
+        Some("svg") => OutputFormat::Svg,
+        Some("json") => OutputFormat::Json,
+        _ if a.output.as_os_str() == "-" => match a.method {
+            Method::Zbuffer => OutputFormat::Png,
+            _ => OutputFormat::Svg,
+        },
+        _ => {
+            return Err(sightline::Error::Output(format!(
+                "{}: unknown output extension (use .png, .svg or .json, or --to)",
+                a.output.display()
+            )));
+        }
+    })
+}
+
+/// The drawing of an object-space method, with its stats.
+fn run_method(
+    method: Method,
+    scene: &Scene,
+    prepared: &pipeline::Prepared,
+    camera: &Camera,
+    fill: Fill,
+) -> sightline::visibility::VisibilityResult {
+    let m = sightline::visibility::method_by_name(method.name())
+        .expect("every object-space CLI method is registered");
+    m.run(scene, &prepared.screen, camera, fill)
+}
+
 fn render(a: RenderArgs) -> sightline::Result<()> {
+    let format = output_format(&a)?;
+    if a.method == Method::Zbuffer && format != OutputFormat::Png {
+        return Err(sightline::Error::Output(
+            "the z-buffer draws pixels: write it as PNG (use --method bsp for SVG or JSON)".into(),
+        ));
+    }
+    if a.depth.is_some() && a.method != Method::Zbuffer {
+        return Err(sightline::Error::Output(
+            "--depth needs --method zbuffer".into(),
+        ));
+    }
     let t0 = Instant::now();
     let scene = load_scene(&a.input)?;
     let t_load = t0.elapsed();
     let camera = camera_for(&a.camera, &scene)?;
-    let Method::Zbuffer = a.method;
     let t1 = Instant::now();
     let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
     let t_project = t1.elapsed();
-    let bar = progress_bar(prepared.screen.polys.len() as u64, "rendering");
+    let bg = a.background.map(|c| c as f64 / 255.0);
     let t2 = Instant::now();
-    let zb = sightline::raster::zbuffer::render(&prepared.screen, |n| bar.set_position(n as u64));
-    let t_raster = t2.elapsed();
-    bar.finish_and_clear();
-    let image = pipeline::colorize(&scene, &prepared.screen, &zb, &camera, a.fill, a.background);
-    let bytes = png::encode_rgb(camera.width, camera.height, image)?;
-    if let Some(depth_path) = &a.depth {
-        let depth = zb.normalized_depth(&prepared.screen);
-        let d = png::encode_depth16(camera.width, camera.height, &depth)?;
-        write_atomic(depth_path, &d)?;
-    }
+    let (bytes, detail) = if a.method == Method::Zbuffer {
+        let bar = progress_bar(prepared.screen.polys.len() as u64, "rendering");
+        let zb =
+            sightline::raster::zbuffer::render(&prepared.screen, |n| bar.set_position(n as u64));
+        bar.finish_and_clear();
+        let image =
+            pipeline::colorize(&scene, &prepared.screen, &zb, &camera, a.fill, a.background);
+        if let Some(depth_path) = &a.depth {
+            let depth = zb.normalized_depth(&prepared.screen);
+            let d = png::encode_depth16(camera.width, camera.height, &depth)?;
+            write_atomic(depth_path, &d)?;
+        }
+        let detail = format!(
+            "fragments {}, exact fallbacks: edge {} depth {}, depth ties {}",
+            zb.stats.fragments,
+            zb.stats.column_fallbacks,
+            zb.stats.depth_fallbacks,
+            zb.stats.depth_ties
+        );
+        (png::encode_rgb(camera.width, camera.height, image)?, detail)
+    } else {
+        let mut result = run_method(a.method, &scene, &prepared, &camera, a.fill);
+        if result.drawing.background.is_none() {
+            result.drawing.background = Some(bg);
+        }
+        let detail = serde_json::Value::Object(result.stats.clone()).to_string();
+        let bytes = match format {
+            OutputFormat::Svg => {
+                let options = sightline::output::svg::SvgOptions {
+                    stroke: a.stroke.then_some(([0.0; 3], 0.5)),
+                    crisp: a.crisp,
+                };
+                sightline::output::svg::write_svg(&result.drawing, &options).into_bytes()
+            }
+            OutputFormat::Json => {
+                let mut stats = result.stats.clone();
+                stats.insert("method".into(), a.method.name().into());
+                sightline::output::json::write_json(&result.drawing, &scene, &stats).into_bytes()
+            }
+            OutputFormat::Png => {
+                let colors = sightline::output::raster_drawing::colors(&result.drawing);
+                let px = colors
+                    .into_iter()
+                    .map(sightline::raster::shade::to_u8)
+                    .collect();
+                png::encode_rgb(camera.width, camera.height, px)?
+            }
+        };
+        (bytes, detail)
+    };
+    let t_method = t2.elapsed();
     write_atomic(&a.output, &bytes)?;
     if a.stats {
         let s = &prepared.screen.stats;
         eprintln!(
-            "load {:.3}s, project+cull {:.3}s, z-buffer {:.3}s",
+            "load {:.3}s, project+cull {:.3}s, {} {:.3}s",
             t_load.as_secs_f64(),
             t_project.as_secs_f64(),
-            t_raster.as_secs_f64()
+            a.method.name(),
+            t_method.as_secs_f64()
         );
         eprintln!(
             "faces {} -> on screen {} (frustum culled {}, back faces culled {}, clipped {}, degenerate after snap {})",
@@ -326,14 +468,66 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             s.clipped,
             s.degenerate_after_snap
         );
-        eprintln!(
-            "fragments {}, exact fallbacks: edge {} depth {}, depth ties {}",
-            zb.stats.fragments,
-            zb.stats.column_fallbacks,
-            zb.stats.depth_fallbacks,
-            zb.stats.depth_ties
-        );
+        eprintln!("{detail}");
     }
+    Ok(())
+}
+
+fn compare(a: CompareArgs) -> sightline::Result<()> {
+    if a.against != Method::Zbuffer {
+        return Err(sightline::Error::Output(
+            "--against: only the z-buffer is a reference so far".into(),
+        ));
+    }
+    let scene = load_scene(&a.input)?;
+    let camera = camera_for(&a.camera, &scene)?;
+    let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
+    let t = Instant::now();
+    let zb = sightline::raster::zbuffer::render(&prepared.screen, |_| {});
+    let t_ref = t.elapsed().as_secs_f64();
+    let reference = zb.face_ids(&prepared.screen);
+    let t = Instant::now();
+    let ids = match a.method {
+        Method::Zbuffer => reference.clone(),
+        m => {
+            let result = run_method(m, &scene, &prepared, &camera, Fill::Id);
+            sightline::output::raster_drawing::face_ids(&result.drawing)
+        }
+    };
+    let t_method = t.elapsed().as_secs_f64();
+    let c = pipeline::compare_ids(
+        &reference,
+        &ids,
+        camera.width as usize,
+        camera.height as usize,
+    );
+    let pct = |n: usize, d: usize| 100.0 * n as f64 / d.max(1) as f64;
+    println!(
+        "{} vs {} at {}x{}:",
+        a.method.name(),
+        a.against.name(),
+        camera.width,
+        camera.height
+    );
+    println!(
+        "  covered pixels  {:9}  mismatched {:9} ({:.4}%)",
+        c.covered,
+        c.covered_mismatch,
+        pct(c.covered_mismatch, c.covered)
+    );
+    println!(
+        "  interior pixels {:9}  mismatched {:9} ({:.4}%)",
+        c.interior,
+        c.interior_mismatch,
+        pct(c.interior_mismatch, c.interior)
+    );
+    println!(
+        "  time: {} {:.4} s, {} {:.4} s (after load and projection)",
+        a.method.name(),
+        t_method,
+        a.against.name(),
+        t_ref
+    );
     Ok(())
 }
 
@@ -423,14 +617,26 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
     );
     if !load_times.is_empty() {
         let tl = median(load_times);
-        println!("  load             {:9.4} s  {:12.0} triangles/s", tl, tris as f64 / tl);
+        println!(
+            "  load             {:9.4} s  {:12.0} triangles/s",
+            tl,
+            tris as f64 / tl
+        );
     }
     let name = match a.method {
         BenchMethod::Zbuffer => "z-buffer",
         BenchMethod::Bsp => "bsp",
     };
-    println!("  project + cull   {:9.4} s  {:12.0} triangles/s", tp, tris as f64 / tp);
-    println!("  {name:16} {:9.4} s  {:12.0} triangles/s", tm, tris as f64 / tm);
+    println!(
+        "  project + cull   {:9.4} s  {:12.0} triangles/s",
+        tp,
+        tris as f64 / tp
+    );
+    println!(
+        "  {name:16} {:9.4} s  {:12.0} triangles/s",
+        tm,
+        tris as f64 / tm
+    );
     println!(
         "  total            {:9.4} s  {:12.0} triangles/s",
         tp + tm,

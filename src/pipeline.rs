@@ -103,3 +103,44 @@ pub fn screen_extents_overlap(screen: &ScreenScene) -> bool {
     }
     false
 }
+
+/// How two face-id images differ.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct IdComparison {
+    /// Pixels covered in either image.
+    pub covered: usize,
+    /// Covered pixels whose ids differ.
+    pub covered_mismatch: usize,
+    /// Pixels whose 3x3 neighbourhood (clipped to the image) holds one id in the reference.
+    pub interior: usize,
+    /// Interior pixels whose ids differ.
+    pub interior_mismatch: usize,
+}
+
+/// Compares a method's face ids with a reference's, over covered and over interior pixels.
+pub fn compare_ids(
+    reference: &[Option<u32>],
+    ids: &[Option<u32>],
+    w: usize,
+    h: usize,
+) -> IdComparison {
+    let mut c = IdComparison::default();
+    for j in 0..h {
+        for i in 0..w {
+            let k = j * w + i;
+            let differ = reference[k] != ids[k];
+            if reference[k].is_some() || ids[k].is_some() {
+                c.covered += 1;
+                c.covered_mismatch += differ as usize;
+            }
+            let v = reference[k];
+            let interior = (j.saturating_sub(1)..(j + 2).min(h))
+                .all(|y| (i.saturating_sub(1)..(i + 2).min(w)).all(|x| reference[y * w + x] == v));
+            if interior {
+                c.interior += 1;
+                c.interior_mismatch += differ as usize;
+            }
+        }
+    }
+    c
+}

@@ -243,3 +243,103 @@ fn every_malformed_fixture_fails_cleanly_through_the_cli() {
         "at least 10 kinds of malformed file, found {checked}"
     );
 }
+
+fn compare_interior_mismatch(file: &str, method: &str, extra: &[&str]) -> usize {
+    let mut args = vec!["compare", file, "--method", method, "--size", "160x120"];
+    args.extend_from_slice(extra);
+    let o = sightline(&args);
+    assert!(
+        o.status.success(),
+        "{file}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let text = String::from_utf8_lossy(&o.stdout).to_string();
+    let line = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("interior pixels"))
+        .unwrap_or_else(|| panic!("{file}: no interior line in {text}"));
+    // "interior pixels N  mismatched M (p%)"
+    let words: Vec<&str> = line.split_whitespace().collect();
+    let at = words.iter().position(|w| *w == "mismatched").unwrap();
+    words[at + 1].parse().unwrap()
+}
+
+#[test]
+fn compare_bsp_has_no_interior_mismatch_on_any_fixture() {
+    let mut files: Vec<PathBuf> = std::fs::read_dir("fixtures")
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            p.extension()
+                .is_some_and(|e| ["obj", "stl", "ply", "x3d"].contains(&e.to_str().unwrap()))
+        })
+        .collect();
+    files.sort();
+    assert!(files.len() >= 10);
+    for f in &files {
+        let f = f.to_str().unwrap();
+        for view in ["iso", "front", "top"] {
+            assert_eq!(
+                compare_interior_mismatch(f, "bsp", &["--view", view]),
+                0,
+                "{f} {view}"
+            );
+        }
+    }
+}
+
+#[test]
+fn compare_painter_fails_on_cyclic_and_interpenetrating_scenes() {
+    for f in ["fixtures/cyclic_bars.obj", "fixtures/interpenetrating.obj"] {
+        assert!(
+            compare_interior_mismatch(f, "painter", &["--view", "front"]) > 0,
+            "{f}"
+        );
+        assert_eq!(
+            compare_interior_mismatch(f, "bsp", &["--view", "front"]),
+            0,
+            "{f}"
+        );
+    }
+}
+
+#[test]
+fn render_bsp_writes_svg_and_json() {
+    let o = sightline(&[
+        "render",
+        "fixtures/cube.obj",
+        "--method",
+        "bsp",
+        "-o",
+        "-",
+        "--size",
+        "64x64",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let svg = String::from_utf8(o.stdout).unwrap();
+    let doc = roxmltree::Document::parse(&svg).expect("well-formed SVG");
+    let faces: Vec<&str> = doc
+        .descendants()
+        .filter_map(|n| n.attribute("data-face"))
+        .collect();
+    assert!(!faces.is_empty() && faces.len() <= 6 * 4, "{faces:?}");
+    let out = tmp("cube.json");
+    let o = sightline(&[
+        "render",
+        "fixtures/cube.obj",
+        "--method",
+        "bsp",
+        "-o",
+        out.to_str().unwrap(),
+        "--size",
+        "64x64",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert!(
+        v["faces"].as_array().is_some_and(|f| f.len() == 3),
+        "iso view of a cube: 3 faces"
+    );
+    let o = sightline(&["render", "fixtures/cube.obj", "-o", "x.svg"]);
+    assert_eq!(o.status.code(), Some(1), "the z-buffer cannot write SVG");
+}

@@ -647,10 +647,8 @@ fn read_body<B: Body>(h: &Header, body: &mut B, name: &str) -> Result<Data, Load
         let vrole = h.vertex.filter(|v| v.element == k);
         let frole = h.face.filter(|f| f.element == k);
         if vrole.is_none() && frole.is_none() {
-            d.warnings.push(format!(
-                "{name}: element '{ename}' ({} entries) skipped",
-                e.count
-            ));
+            d.warnings
+                .push(format!("element '{ename}' ({} entries) skipped", e.count));
         }
         body.precheck(e, name)?;
         let cap = e.count.min(body.max_entries(e)) as usize;

@@ -14,10 +14,10 @@
 //! lying in one plane and overlapping are ordered by the larger face id first (then the later
 //! polygon), the z-buffer's tie rule: output never depends on input order.
 
+use crate::camera::Camera;
 use crate::exact::polygon::{Piece, Split, convex_pieces};
 use crate::exact::predicates::{Line, line_side};
 use crate::exact::{GridPoint, Plane, Samples};
-use crate::camera::Camera;
 use crate::output::drawing::{DrawItem, Drawing};
 use crate::pipeline::Fill;
 use crate::project::ScreenScene;
@@ -332,7 +332,12 @@ impl Coverage {
         let mut all = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
         for p in pieces {
             let b = bounds(p);
-            all = [all[0].min(b[0]), all[1].min(b[1]), all[2].max(b[2]), all[3].max(b[3])];
+            all = [
+                all[0].min(b[0]),
+                all[1].min(b[1]),
+                all[2].max(b[2]),
+                all[3].max(b[3]),
+            ];
         }
         let cells = ((pieces.len() as f64).sqrt() as usize).clamp(1, 512);
         let size = [
@@ -352,7 +357,8 @@ impl Coverage {
     }
 
     fn cell_range(&self, b: &[f64; 4]) -> (usize, usize, usize, usize) {
-        let c = |v: f64, o: f64, s: f64| (((v - o) / s).floor().max(0.0) as usize).min(self.cells - 1);
+        let c =
+            |v: f64, o: f64, s: f64| (((v - o) / s).floor().max(0.0) as usize).min(self.cells - 1);
         (
             c(b[0], self.origin[0], self.cell[0]),
             c(b[2], self.origin[0], self.cell[0]),
@@ -545,10 +551,9 @@ impl super::VisibilityMethod for BspMethod {
         let mut bsp = Bsp::build(screen);
         let t_build = t.elapsed().as_secs_f64();
         let translucent = fill == Fill::Shade
-            && screen
-                .polys
-                .iter()
-                .any(|p| scene.materials[scene.faces[p.face as usize].material as usize].transparency > 0.0);
+            && screen.polys.iter().any(|p| {
+                scene.materials[scene.faces[p.face as usize].material as usize].transparency > 0.0
+            });
         let t = Instant::now();
         let pieces = if translucent {
             bsp.back_to_front()
