@@ -202,6 +202,18 @@ impl Piece {
     }
 }
 
+/// Do two convex pieces have disjoint interiors? Exact: some edge line of one has the other
+/// entirely on its outer side (touching allowed); for convex polygons such a line exists
+/// whenever they do not overlap.
+pub fn separated(p: &Piece, q: &Piece) -> bool {
+    let outside = |a: &Piece, b: &Piece| {
+        a.lines
+            .iter()
+            .any(|l| (0..b.len()).all(|k| b.vertex_line_sign(k, l) != Ordering::Greater))
+    };
+    outside(q, p) || outside(p, q)
+}
+
 /// The line with its sides swapped.
 pub fn negate(l: &Line) -> Line {
     match l {

@@ -15,7 +15,7 @@
 //! polygon), the z-buffer's tie rule: output never depends on input order.
 
 use crate::camera::Camera;
-use crate::exact::polygon::{Piece, Split, convex_pieces};
+use crate::exact::polygon::{Piece, Split, convex_pieces, separated};
 use crate::exact::predicates::{Line, line_side};
 use crate::exact::{GridPoint, Plane, Samples};
 use crate::output::drawing::{DrawItem, Drawing};
@@ -415,18 +415,6 @@ impl Coverage {
             self.seen.push(0);
         }
     }
-}
-
-/// Do two convex pieces have disjoint interiors? Exact: some edge line of one has the other
-/// entirely on its outer side (touching allowed); for convex polygons such a line exists
-/// whenever they do not overlap.
-fn separated(p: &Piece, q: &Piece) -> bool {
-    let outside = |a: &Piece, b: &Piece| {
-        a.lines
-            .iter()
-            .any(|l| (0..b.len()).all(|k| b.vertex_line_sign(k, l) != Ordering::Greater))
-    };
-    outside(q, p) || outside(p, q)
 }
 
 /// Pushes the parts of `piece` outside the convex `front` (exactly; touching is outside).
