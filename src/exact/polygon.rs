@@ -27,6 +27,9 @@ pub struct Piece {
     pub lines: Vec<Line>,
     /// The grid (x, y) of vertex k when it is an input corner: exact fast paths use it.
     pub corners: Vec<Option<[i32; 2]>>,
+    /// For line k, the grid (x, y) of the face edge it runs along, when it is one (both ends lie
+    /// on the support plane): a sign that agrees at both ends holds all along it.
+    pub segments: Vec<Option<[[i32; 2]; 2]>>,
 }
 
 /// Where a piece lies relative to a plane or a line.
@@ -56,12 +59,19 @@ impl Piece {
             })
             .collect();
         // Vertex k sits between line k-1 and line k: corner k.
+        let segments = (0..n)
+            .map(|k| {
+                let (a, b) = (corners[k], corners[(k + 1) % n]);
+                Some([[a.x, a.y], [b.x, b.y]])
+            })
+            .collect();
         let corners = corners.iter().map(|c| Some([c.x, c.y])).collect();
         Piece {
             poly,
             support,
             lines,
             corners,
+            segments,
         }
     }
 
@@ -86,6 +96,22 @@ impl Piece {
         {
             return s;
         }
+        // On a face edge whose two ends have the same sign, every point has it: this settles
+        // the exact zeros of shared edges without any determinant.
+        let n = self.len();
+        for seg in [self.segments[(k + n - 1) % n], self.segments[k]]
+            .into_iter()
+            .flatten()
+        {
+            let [[px, py], [rx, ry]] = seg;
+            if let (Some(a), Some(b)) = (
+                grid_vertex_plane_sign(&self.support, px, py, q),
+                grid_vertex_plane_sign(&self.support, rx, ry, q),
+            ) && a == b
+            {
+                return a;
+            }
+        }
         depth_order_at(self.vertex_lines(k), &self.support, q)
             .expect("adjacent lines of a convex piece cross")
     }
@@ -97,9 +123,23 @@ impl Piece {
         if a == l || b == l || *a == negate(l) || *b == negate(l) {
             return Ordering::Equal;
         }
-        if let (Some([x, y]), Line::Edge(p)) = (self.corners[k], l) {
-            let v = p.a as i128 * x as i128 + p.b as i128 * y as i128 + p.d;
-            return v.cmp(&0);
+        if let Line::Edge(p) = l {
+            let at = |[x, y]: [i32; 2]| {
+                (p.a as i128 * x as i128 + p.b as i128 * y as i128 + p.d).cmp(&0)
+            };
+            if let Some(c) = self.corners[k] {
+                return at(c);
+            }
+            let n = self.len();
+            for [e0, e1] in [self.segments[(k + n - 1) % n], self.segments[k]]
+                .into_iter()
+                .flatten()
+            {
+                let a = at(e0);
+                if a == at(e1) {
+                    return a;
+                }
+            }
         }
         line_side(self.vertex_lines(k), l).expect("adjacent lines of a convex piece cross")
     }
@@ -174,6 +214,9 @@ impl Piece {
         let last = (run[run.len() - 1] + 1) % n;
         let mut lines: Vec<Line> = run.iter().map(|&k| self.lines[k]).collect();
         lines.push(closing);
+        let mut segments: Vec<Option<[[i32; 2]; 2]>> =
+            run.iter().map(|&k| self.segments[k]).collect();
+        segments.push(None);
         // Vertex 0 joins the closing line and the first kept edge; vertex i joins kept edges
         // i-1 and i; the last joins the last kept edge and the closing line.
         let mut corners = Vec::with_capacity(lines.len());
@@ -185,6 +228,7 @@ impl Piece {
             support: self.support,
             lines,
             corners,
+            segments,
         }
     }
 

@@ -175,6 +175,32 @@ fn tie_key(screen: &ScreenScene, p: &Piece) -> (std::cmp::Reverse<u32>, std::cmp
     )
 }
 
+/// Do the pieces pairwise have disjoint interiors on screen? Then no piece can hide another and
+/// their order does not matter: the node needs no splitter. A sweep over x on f64 bounds finds the
+/// candidate pairs; the exact separation test decides each. Stops at the first overlap.
+fn pairwise_separated(list: &[Piece]) -> bool {
+    let mut order: Vec<(f64, usize, [f64; 4])> = list
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let b = bounds(p);
+            (b[0], i, b)
+        })
+        .collect();
+    order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let mut active: Vec<(usize, [f64; 4])> = Vec::new();
+    for (_, i, b) in order {
+        active.retain(|(_, a)| a[2] > b[0]);
+        for (j, a) in &active {
+            if a[1] < b[3] && b[1] < a[3] && !separated(&list[i], &list[*j]) {
+                return false;
+            }
+        }
+        active.push((i, b));
+    }
+    true
+}
+
 /// Partitions `list` by `splitter`: (negative, on, positive).
 fn partition(splitter: &Splitter, list: Vec<Piece>) -> (Vec<Piece>, Vec<Piece>, Vec<Piece>) {
     let (mut neg, mut on, mut pos) = (Vec::new(), Vec::new(), Vec::new());
@@ -213,7 +239,8 @@ impl Bsp {
         let mut work: Vec<(Link, usize, Vec<Piece>)> = vec![(Link::Root, 1, pieces)];
         while let Some((link, depth, list)) = work.pop() {
             let n = list.len();
-            let (mut neg, mut on, mut pos) = if n == 1 {
+            let (mut neg, mut on, mut pos) = if n == 1 || pairwise_separated(&list) {
+                // Nothing here can hide anything else: keep the pieces together, in input order.
                 (Vec::new(), list, Vec::new())
             } else {
                 let (cands, sample) = candidates(&list);
@@ -236,6 +263,8 @@ impl Bsp {
                     (neg, on, pos)
                 }
             };
+            // Coplanar pieces that overlap resolve by the tie rule; in a separated bag the order
+            // is free, and the same key keeps it deterministic.
             on.sort_by_key(|p| tie_key(screen, p));
             stats.fragments += on.len();
             stats.depth = stats.depth.max(depth);
