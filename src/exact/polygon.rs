@@ -123,6 +123,31 @@ impl Piece {
         if a == l || b == l || *a == negate(l) || *b == negate(l) {
             return Ordering::Equal;
         }
+        // A vertex on a cut of the support plane by Q is on Q. There, a cut line of another
+        // plane T by the same Q, c_Q·T - c_T·Q, has the sign of T: a plane test that the
+        // face-edge shortcuts usually settle (splits of neighbouring faces by one plane meet
+        // exactly on their shared edge).
+        if let Line::Cut(p0, p1) = l {
+            // l = c_p1·p0 - c_p0·p1: where the vertex is on p1 it has the sign of p0 there;
+            // where it is on p0, the opposite sign of p1.
+            let on = |q: &Plane| {
+                *q == self.support
+                    || [a, b].iter().any(|own| match own {
+                        Line::Cut(x, y) => {
+                            (*x == self.support && y == q) || (x == q && *y == self.support)
+                        }
+                        Line::Edge(_) => false,
+                    })
+            };
+            if p0.c > 0 && p1.c > 0 {
+                if on(p1) {
+                    return self.vertex_plane_sign(k, p0);
+                }
+                if on(p0) {
+                    return self.vertex_plane_sign(k, p1).reverse();
+                }
+            }
+        }
         if let Line::Edge(p) = l {
             let at = |[x, y]: [i32; 2]| {
                 (p.a as i128 * x as i128 + p.b as i128 * y as i128 + p.d).cmp(&0)
@@ -142,6 +167,35 @@ impl Piece {
             }
         }
         line_side(self.vertex_lines(k), l).expect("adjacent lines of a convex piece cross")
+    }
+
+    /// Which sides of `q` (`q.c > 0`) the piece reaches, without building parts: (some vertex
+    /// strictly negative, some strictly positive). Stops as soon as both are seen.
+    pub fn sides_of_plane(&self, q: &Plane) -> (bool, bool) {
+        if same_plane(&self.support, q) {
+            return (false, false);
+        }
+        self.sides(|k| self.vertex_plane_sign(k, q))
+    }
+
+    /// As [`Self::sides_of_plane`], for a screen line.
+    pub fn sides_of_line(&self, l: &Line) -> (bool, bool) {
+        self.sides(|k| self.vertex_line_sign(k, l))
+    }
+
+    fn sides(&self, sign: impl Fn(usize) -> Ordering) -> (bool, bool) {
+        let (mut neg, mut pos) = (false, false);
+        for k in 0..self.len() {
+            match sign(k) {
+                Ordering::Less => neg = true,
+                Ordering::Greater => pos = true,
+                Ordering::Equal => {}
+            }
+            if neg && pos {
+                break;
+            }
+        }
+        (neg, pos)
     }
 
     /// Splits by a support plane `q` (`q.c > 0`). The negative part is the one nearer the viewer.
@@ -232,17 +286,20 @@ impl Piece {
         }
     }
 
+    /// Vertex k in f64 grid coordinates (rounded: for output and bounds, never decisions).
+    pub fn vertex_f64(&self, k: usize) -> [f64; 2] {
+        match self.corners[k] {
+            Some([x, y]) => [x as f64, y as f64],
+            None => {
+                let [a, b] = self.vertex_lines(k);
+                crossing_f64(a, b)
+            }
+        }
+    }
+
     /// The vertices in f64 grid coordinates (rounded once each: for output only).
     pub fn vertices_f64(&self) -> Vec<[f64; 2]> {
-        (0..self.len())
-            .map(|k| match self.corners[k] {
-                Some([x, y]) => [x as f64, y as f64],
-                None => {
-                    let [a, b] = self.vertex_lines(k);
-                    crossing_f64(a, b)
-                }
-            })
-            .collect()
+        (0..self.len()).map(|k| self.vertex_f64(k)).collect()
     }
 }
 
@@ -250,11 +307,7 @@ impl Piece {
 /// entirely on its outer side (touching allowed); for convex polygons such a line exists
 /// whenever they do not overlap.
 pub fn separated(p: &Piece, q: &Piece) -> bool {
-    let outside = |a: &Piece, b: &Piece| {
-        a.lines
-            .iter()
-            .any(|l| (0..b.len()).all(|k| b.vertex_line_sign(k, l) != Ordering::Greater))
-    };
+    let outside = |a: &Piece, b: &Piece| a.lines.iter().any(|l| !b.sides_of_line(l).1);
     outside(q, p) || outside(p, q)
 }
 

@@ -101,12 +101,21 @@ impl Splitter {
             Splitter::Screen(l) => p.split_by_line(l),
         }
     }
+
+    /// (reaches the negative side, reaches the positive side), without splitting.
+    fn sides(&self, p: &Piece) -> (bool, bool) {
+        match self {
+            Splitter::Support(q) => p.sides_of_plane(q),
+            Splitter::Screen(l) => p.sides_of_line(l),
+        }
+    }
 }
 
 /// The f64 screen bounds of a piece (grid units), widened by a unit: a filter, never a decision.
 fn bounds(p: &Piece) -> [f64; 4] {
     let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
-    for [x, y] in p.vertices_f64() {
+    for k in 0..p.len() {
+        let [x, y] = p.vertex_f64(k);
         b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
     }
     [b[0] - 1.0, b[1] - 1.0, b[2] + 1.0, b[3] + 1.0]
@@ -116,11 +125,11 @@ fn bounds(p: &Piece) -> [f64; 4] {
 fn score(splitter: &Splitter, sample: &[&Piece]) -> i64 {
     let (mut neg, mut pos, mut split) = (0i64, 0i64, 0i64);
     for p in sample {
-        match splitter.split(p) {
-            Split::Negative => neg += 1,
-            Split::Positive => pos += 1,
-            Split::Both(..) => split += 1,
-            Split::On => {}
+        match splitter.sides(p) {
+            (true, false) => neg += 1,
+            (false, true) => pos += 1,
+            (true, true) => split += 1,
+            (false, false) => {}
         }
     }
     8 * split + (neg - pos).abs()
@@ -139,7 +148,7 @@ fn screen_line(axis: usize, m: i64) -> Line {
 
 /// Candidate splitters: a few support planes spread through the list, and the screen lines
 /// through the median of the sample's centres in x and in y. The best on a sample wins.
-fn candidates(pieces: &[Piece]) -> (Vec<Splitter>, Vec<&Piece>) {
+fn candidates<'a>(pieces: &'a [Piece], boxes: &[[f64; 4]]) -> (Vec<Splitter>, Vec<&'a Piece>) {
     const CANDIDATES: usize = 6;
     const SAMPLE: usize = 48;
     let step = pieces.len().div_ceil(SAMPLE).max(1);
@@ -150,12 +159,11 @@ fn candidates(pieces: &[Piece]) -> (Vec<Splitter>, Vec<&Piece>) {
         .map(|i| Splitter::Support(pieces[i].support))
         .collect();
     if pieces.len() > 2 {
-        let centres: Vec<[f64; 2]> = sample
+        let centres: Vec<[f64; 2]> = boxes
             .iter()
-            .map(|p| {
-                let b = bounds(p);
-                [(b[0] + b[2]) / 2.0, (b[1] + b[3]) / 2.0]
-            })
+            .step_by(step)
+            .take(SAMPLE)
+            .map(|b| [(b[0] + b[2]) / 2.0, (b[1] + b[3]) / 2.0])
             .collect();
         for axis in 0..2 {
             let mut v: Vec<f64> = centres.iter().map(|c| c[axis]).collect();
@@ -178,14 +186,11 @@ fn tie_key(screen: &ScreenScene, p: &Piece) -> (std::cmp::Reverse<u32>, std::cmp
 /// Do the pieces pairwise have disjoint interiors on screen? Then no piece can hide another and
 /// their order does not matter: the node needs no splitter. A sweep over x on f64 bounds finds the
 /// candidate pairs; the exact separation test decides each. Stops at the first overlap.
-fn pairwise_separated(list: &[Piece]) -> bool {
-    let mut order: Vec<(f64, usize, [f64; 4])> = list
+fn pairwise_separated(list: &[Piece], boxes: &[[f64; 4]]) -> bool {
+    let mut order: Vec<(f64, usize, [f64; 4])> = boxes
         .iter()
         .enumerate()
-        .map(|(i, p)| {
-            let b = bounds(p);
-            (b[0], i, b)
-        })
+        .map(|(i, b)| (b[0], i, *b))
         .collect();
     order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     let mut active: Vec<(usize, [f64; 4])> = Vec::new();
@@ -239,11 +244,16 @@ impl Bsp {
         let mut work: Vec<(Link, usize, Vec<Piece>)> = vec![(Link::Root, 1, pieces)];
         while let Some((link, depth, list)) = work.pop() {
             let n = list.len();
-            let (mut neg, mut on, mut pos) = if n == 1 || pairwise_separated(&list) {
+            let boxes: Vec<[f64; 4]> = if n == 1 {
+                Vec::new()
+            } else {
+                list.iter().map(bounds).collect()
+            };
+            let (mut neg, mut on, mut pos) = if n == 1 || pairwise_separated(&list, &boxes) {
                 // Nothing here can hide anything else: keep the pieces together, in input order.
                 (Vec::new(), list, Vec::new())
             } else {
-                let (cands, sample) = candidates(&list);
+                let (cands, sample) = candidates(&list, &boxes);
                 let mut ranked: Vec<(i64, usize)> = cands
                     .iter()
                     .enumerate()
