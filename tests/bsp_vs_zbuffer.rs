@@ -134,3 +134,41 @@ mod random_scenes {
         }
     }
 }
+
+/// Regions per face id in the BSP's drawing.
+fn regions_per_face(file: &str, view: NamedView) -> std::collections::BTreeMap<u32, usize> {
+    use sightline::visibility::{BspMethod, VisibilityMethod};
+    let scene = sightline::load(std::path::Path::new(file), None).unwrap();
+    let cam = Camera::fit(view, scene.bounds().unwrap(), false, 40.0, 200, 200);
+    let prepared = sightline::pipeline::prepare(&scene, &cam, CullMode::Auto);
+    let result = BspMethod.run(
+        &scene,
+        &prepared.screen,
+        &cam,
+        sightline::pipeline::Fill::Shade,
+    );
+    let mut count = std::collections::BTreeMap::new();
+    for item in &result.drawing.items {
+        *count.entry(item.face).or_insert(0) += 1;
+    }
+    count
+}
+
+#[test]
+fn a_face_visible_region_is_not_needlessly_cut() {
+    // Each bar is cut by the BSP and by the bar lying over its far end, which leaves exactly two
+    // visible regions: the body and the tip beyond the crossing bar.
+    let bars = regions_per_face("fixtures/cyclic_bars.obj", NamedView::Front);
+    assert_eq!(
+        bars.values().copied().collect::<Vec<_>>(),
+        vec![2, 2, 2],
+        "{bars:?}"
+    );
+    // A cube seen from a corner: three whole faces, one region each.
+    let cube = regions_per_face("fixtures/cube.obj", NamedView::Iso);
+    assert_eq!(
+        cube.values().copied().collect::<Vec<_>>(),
+        vec![1, 1, 1],
+        "{cube:?}"
+    );
+}
