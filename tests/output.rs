@@ -355,12 +355,21 @@ fn pixel_of(camera: &Camera, p: DVec3) -> usize {
 
 #[test]
 fn seed_transparent_scene_blends_exactly() {
+    check_seed_transparent(&Painter);
+}
+
+#[test]
+fn seed_transparent_scene_blends_exactly_with_bsp() {
+    check_seed_transparent(&sightline::visibility::BspMethod);
+}
+
+fn check_seed_transparent(method: &dyn sightline::visibility::VisibilityMethod) {
     let scene = sightline::load(Path::new("fixtures/seed_transparent.x3d"), None).unwrap();
     let cam = CameraSpec::default()
         .resolve(scene.bounds().unwrap(), scene.viewpoint.as_ref())
         .unwrap();
     let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-    let mut r = Painter.run(&scene, &screen, &cam, Fill::Shade);
+    let mut r = method.run(&scene, &screen, &cam, Fill::Shade);
     r.drawing.background = Some([0.0; 3]);
     assert_eq!(r.drawing.items.len(), 2);
     assert_eq!(
