@@ -189,14 +189,20 @@ struct InfoArgs {
 #[derive(Args)]
 struct BenchArgs {
     /// Scene file (omit with --sphere).
-    #[arg(required_unless_present = "sphere")]
+    #[arg(required_unless_present_any = ["sphere", "soup", "tori"])]
     input: Option<PathBuf>,
     /// Read the input as this format, whatever its extension.
     #[arg(long, value_enum)]
     format: Option<Format>,
     /// Instead of a file, a generated closed UV sphere of about this many triangles.
-    #[arg(long, value_name = "TRIANGLES", conflicts_with = "input")]
+    #[arg(long, value_name = "TRIANGLES", conflicts_with_all = ["input", "soup", "tori"])]
     sphere: Option<usize>,
+    /// Instead of a file, this many random triangles in a unit cube (two-sided, interpenetrating).
+    #[arg(long, value_name = "TRIANGLES", conflicts_with_all = ["input", "tori"])]
+    soup: Option<usize>,
+    /// Instead of a file, two interlocked tori with this many segments around each ring.
+    #[arg(long, value_name = "SEGMENTS", conflicts_with = "input")]
+    tori: Option<usize>,
     /// Runs per stage; the median is reported.
     #[arg(long, default_value_t = 5)]
     repeat: usize,
@@ -560,7 +566,11 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
             scene.expect("repeat >= 1")
         }
         (None, Some(n)) => scene::primitives::sphere_scene(n),
-        (None, None) => unreachable!("clap requires an input or --sphere"),
+        (None, None) => match (a.soup, a.tori) {
+            (Some(n), _) => scene::primitives::random_triangle_soup(n, 1),
+            (None, Some(n)) => scene::primitives::interlocked_tori(n, (n / 2).max(3)),
+            (None, None) => unreachable!("clap requires an input, --sphere, --soup or --tori"),
+        },
     };
     let camera = camera_for(&a.camera, &scene)?;
     let (mut project_times, mut method_times) = (Vec::new(), Vec::new());

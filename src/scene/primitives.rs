@@ -386,6 +386,21 @@ impl SplitMix64 {
     }
 }
 
+/// Two closed tori linked like chain links (each passes through the other's hole), each a mesh
+/// of its own: `segments` around the ring, `sides` around the tube. Their surfaces do not touch,
+/// but no plane separates them: a visibility method must split to order them.
+pub fn interlocked_tori(segments: usize, sides: usize) -> Scene {
+    let mut b = SceneBuilder::new("interlocked_tori");
+    let m = b.default_material();
+    b.begin_mesh("torus a");
+    torus(&mut b, &DMat4::IDENTITY, 1.0, 0.3, segments, sides, m);
+    b.begin_mesh("torus b");
+    let t = DMat4::from_translation(DVec3::new(1.0, 0.0, 0.0))
+        * DMat4::from_rotation_x(std::f64::consts::FRAC_PI_2);
+    torus(&mut b, &t, 1.0, 0.3, segments, sides, m);
+    b.finish().expect("two tori have faces")
+}
+
 /// `count` independent triangles whose corners are uniform in the unit cube [0,1)³, from a
 /// deterministic generator seeded by `seed`. One mesh with a two-sided material (a soup has no
 /// inside, so no face is back-face culled). Degenerate triangles (vanishingly rare) are dropped
