@@ -47,8 +47,20 @@ pub enum Split {
 }
 
 impl Piece {
-    /// The piece of a convex grid polygon (counter-clockwise, y up) in `support`.
+    /// The piece of a convex grid polygon (counter-clockwise, y up) in `support`. Straight
+    /// corners (a corner on the line through its neighbours, as T-junction vertices are) are
+    /// dropped: two adjacent lines of a piece must cross.
     pub fn from_convex(poly: u32, support: Plane, corners: &[GridPoint]) -> Piece {
+        use super::predicates::orient2d;
+        let m = corners.len();
+        let corners: Vec<GridPoint> = (0..m)
+            .filter(|&k| {
+                orient2d(corners[(k + m - 1) % m], corners[k], corners[(k + 1) % m])
+                    != Ordering::Equal
+            })
+            .map(|k| corners[k])
+            .collect();
+        let corners = &corners[..];
         let n = corners.len();
         let lines = (0..n)
             .map(|k| {
