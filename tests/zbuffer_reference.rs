@@ -223,25 +223,9 @@ mod random_scenes {
             near in 0.05f64..1.0,
         ) {
             let scene = random_triangles(n, seed);
-            let eye = DVec3::from_array(eye);
-            prop_assume!(eye.length() > 0.3);
-            let projection = if ortho {
-                Projection::Orthographic { height: 3.0 }
-            } else {
-                Projection::Perspective { fovy_deg: fov }
-            };
-            let near = if ortho { -6.0 } else { near };
-            let cam = Camera {
-                eye,
-                target: DVec3::ZERO,
-                up: if eye.cross(DVec3::Y).length() > 1e-3 { DVec3::Y } else { DVec3::X },
-                projection,
-                near,
-                far: 12.0,
-                width: 48,
-                height: 40,
-            };
-            prop_assume!(cam.validate().is_ok());
+            let cam = random_camera(eye, ortho, fov, near);
+            prop_assume!(cam.is_some());
+            let cam = cam.unwrap();
             check_against_brute_force(&scene, &cam, CullMode::Auto);
         }
     }

@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use glam::{DMat4, DVec3};
-use sightline::camera::Camera;
+use sightline::camera::{Camera, Projection};
 use sightline::scene::{Scene, SceneBuilder, primitives};
 
 /// A tiny deterministic RNG (splitmix64).
@@ -148,4 +148,33 @@ pub fn interior_pixels<T: PartialEq>(img: &[T], w: usize, h: usize) -> Vec<usize
         }
     }
     out
+}
+
+/// A 48x40 camera looking at the origin from `eye`, orthographic (view height 3, near plane
+/// behind the eye) or perspective with the given vertical field of view and near plane; far 12.
+/// `None` when the eye is too close to the origin or the camera is invalid.
+pub fn random_camera(eye: [f64; 3], ortho: bool, fov: f64, near: f64) -> Option<Camera> {
+    let eye = DVec3::from_array(eye);
+    if eye.length() <= 0.3 {
+        return None;
+    }
+    let cam = Camera {
+        eye,
+        target: DVec3::ZERO,
+        up: if eye.cross(DVec3::Y).length() > 1e-3 {
+            DVec3::Y
+        } else {
+            DVec3::X
+        },
+        projection: if ortho {
+            Projection::Orthographic { height: 3.0 }
+        } else {
+            Projection::Perspective { fovy_deg: fov }
+        },
+        near: if ortho { -6.0 } else { near },
+        far: 12.0,
+        width: 48,
+        height: 40,
+    };
+    cam.validate().is_ok().then_some(cam)
 }
