@@ -30,6 +30,8 @@ pub struct Piece {
     /// For line k, the grid (x, y) of the face edge it runs along, when it is one (both ends lie
     /// on the support plane): a sign that agrees at both ends holds all along it.
     pub segments: Vec<Option<[[i32; 2]; 2]>>,
+    /// The grid bounds (x0, y0, x1, y1) of the face's polygon, exact: every part lies inside.
+    pub frame: [i32; 4],
 }
 
 /// Where a piece lies relative to a plane or a line.
@@ -77,6 +79,10 @@ impl Piece {
                 Some([[a.x, a.y], [b.x, b.y]])
             })
             .collect();
+        let frame = corners.iter().fold(
+            [i32::MAX, i32::MAX, i32::MIN, i32::MIN],
+            |f, c| [f[0].min(c.x), f[1].min(c.y), f[2].max(c.x), f[3].max(c.y)],
+        );
         let corners = corners.iter().map(|c| Some([c.x, c.y])).collect();
         Piece {
             poly,
@@ -84,6 +90,7 @@ impl Piece {
             lines,
             corners,
             segments,
+            frame,
         }
     }
 
@@ -295,7 +302,36 @@ impl Piece {
             lines,
             corners,
             segments,
+            frame: self.frame,
         }
+    }
+
+    /// Bounds (x0, y0, x1, y1) in grid units that certainly contain the piece: its f64 vertices
+    /// widened by their proven error, and the face's exact frame where a vertex has no usable
+    /// bound. A filter for spatial indexing: it may be loose, never too tight.
+    pub fn bounds(&self) -> [f64; 4] {
+        let f = self.frame.map(|v| v as f64);
+        let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+        for k in 0..self.len() {
+            let (p, e) = match self.corners[k] {
+                Some([x, y]) => ([x as f64, y as f64], 0.0),
+                None => {
+                    let [a, c] = self.vertex_lines(k);
+                    match super::predicates::crossing_with_error(a, c) {
+                        Some(pe) => pe,
+                        None => return f,
+                    }
+                }
+            };
+            b = [
+                b[0].min(p[0] - e),
+                b[1].min(p[1] - e),
+                b[2].max(p[0] + e),
+                b[3].max(p[1] + e),
+            ];
+        }
+        // Both boxes contain the piece: so does their intersection.
+        [b[0].max(f[0]), b[1].max(f[1]), b[2].min(f[2]), b[3].min(f[3])]
     }
 
     /// Vertex k in f64 grid coordinates (rounded: for output and bounds, never decisions).

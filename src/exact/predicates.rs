@@ -345,6 +345,31 @@ pub fn depth_order_at(m: [&Line; 2], s: &Plane, t: &Plane) -> Option<Ordering> {
     Some(combine_signs(det_sign, d_sign))
 }
 
+/// Where two lines cross, in f64, with a bound on the error of each coordinate; `None` when the
+/// lines are too close to parallel for the bound to hold (the caller must then fall back on
+/// something exact, such as the bounds of the face).
+///
+/// Each coefficient carries an error below `3·U·M` (see the module docs); the numerators
+/// `b0·d1 - b1·d0`, `a1·d0 - a0·d1` and the denominator `a0·b1 - a1·b0` then err by at most
+/// `9·U` times the sum of their products' magnitudes, and the quotient by
+/// `(e_num + |q|·e_den) / (|den| - e_den)` plus one rounding. The bound below doubles that.
+pub fn crossing_with_error(l: &Line, m: &Line) -> Option<([f64; 2], f64)> {
+    let ([a0, b0, d0], [a1, b1, d1]) = (l.filtered(), m.filtered());
+    let den = a0.value * b1.value - a1.value * b0.value;
+    let e_den = 9.0 * U * (a0.magnitude * b1.magnitude + a1.magnitude * b0.magnitude);
+    if !(den.abs() > 2.0 * e_den) || !den.is_finite() {
+        return None;
+    }
+    let nx = b0.value * d1.value - b1.value * d0.value;
+    let ny = a1.value * d0.value - a0.value * d1.value;
+    let e_nx = 9.0 * U * (b0.magnitude * d1.magnitude + b1.magnitude * d0.magnitude);
+    let e_ny = 9.0 * U * (a1.magnitude * d0.magnitude + a0.magnitude * d1.magnitude);
+    let (x, y) = (nx / den, ny / den);
+    let err = |q: f64, e_num: f64| (e_num + q.abs() * e_den) / (den.abs() - e_den) + U * q.abs();
+    let e = 2.0 * err(x, e_nx).max(err(y, e_ny));
+    (x.is_finite() && y.is_finite() && e.is_finite()).then_some(([x, y], e))
+}
+
 /// Exact orientation of three grid points' (x, y): `Greater` for counter-clockwise (y up).
 pub fn orient2d(p: GridPoint, q: GridPoint, r: GridPoint) -> Ordering {
     let det = (q.x as i64 - p.x as i64) * (r.y as i64 - p.y as i64)

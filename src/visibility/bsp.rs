@@ -111,13 +111,10 @@ impl Splitter {
     }
 }
 
-/// The f64 screen bounds of a piece (grid units), widened by a unit: a filter, never a decision.
+/// Screen bounds (grid units) that certainly contain the piece, widened by a unit so that
+/// touching pieces also meet: a filter for candidate pairs, never a decision.
 fn bounds(p: &Piece) -> [f64; 4] {
-    let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
-    for k in 0..p.len() {
-        let [x, y] = p.vertex_f64(k);
-        b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
-    }
+    let b = p.bounds();
     [b[0] - 1.0, b[1] - 1.0, b[2] + 1.0, b[3] + 1.0]
 }
 
