@@ -41,7 +41,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
 use proptest::prelude::*;
-use proptest::test_runner::{Config, TestError, TestRunner};
+use proptest::test_runner::{Config, TestCaseError, TestError, TestRunner};
 use sightline::camera::{Camera, Projection};
 use sightline::exact::Plane;
 use sightline::exact::polygon::{Piece, same_plane, separated};
@@ -646,15 +646,23 @@ struct Run {
     polys: Vec<Poly>,
 }
 
-/// Cases skipped because some screen polygon is not simple (snapping can fold a sliver): the
-/// properties are stated for simple polygons. Counted, and reported by the tests.
-static NON_SIMPLE: AtomicUsize = AtomicUsize::new(0);
+/// Why a case was not checked. Skipped cases are rejected, so proptest draws another: every
+/// counted case is checked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Skip {
+    /// Every face was degenerate.
+    NoScene,
+    /// Some screen polygon is not simple (snapping can fold a sliver): the properties are stated
+    /// for simple polygons.
+    NonSimple,
+    /// See [`SKIP_STRAIGHT_CORNERS`].
+    StraightCorner,
+}
 
-/// Cases skipped because a convex piece of some screen polygon has a straight corner (see
-/// `collinear_corner_makes_parallel_adjacent_lines`): `Bsp::visible_set` may panic on them. Set
-/// to false once the library drops straight corners, so that the properties cover them again.
+/// Skip cases where a convex piece of some screen polygon has a straight corner (the known bug
+/// of `collinear_corner_makes_parallel_adjacent_lines`): `Bsp::visible_set` may panic on them.
+/// Set to false once the library drops straight corners, so that the properties cover them.
 const SKIP_STRAIGHT_CORNERS: bool = true;
-static STRAIGHT_CORNERS: AtomicUsize = AtomicUsize::new(0);
 
 /// Does some initial convex piece have two adjacent edges on one line (a straight corner)?
 fn has_straight_corner(screen: &ScreenScene) -> bool {
@@ -667,20 +675,24 @@ fn has_straight_corner(screen: &ScreenScene) -> bool {
     })
 }
 
-fn run(case: &Case) -> Option<Run> {
-    let s = setup(case)?;
+/// The screen scene of a case, or why it is skipped.
+fn screen_of(s: &Setup) -> Result<ScreenScene, Skip> {
     let screen = prepare(&s.scene, &s.camera, s.cull).screen;
-    let polys = screen_polys(&screen);
-    if !polys.iter().all(|p| is_simple(&p.pts)) {
-        NON_SIMPLE.fetch_add(1, AtomicOrdering::Relaxed);
-        return None;
+    if !screen_polys(&screen).iter().all(|p| is_simple(&p.pts)) {
+        return Err(Skip::NonSimple);
     }
     if SKIP_STRAIGHT_CORNERS && has_straight_corner(&screen) {
-        STRAIGHT_CORNERS.fetch_add(1, AtomicOrdering::Relaxed);
-        return None;
+        return Err(Skip::StraightCorner);
     }
+    Ok(screen)
+}
+
+fn run(case: &Case) -> Result<Run, Skip> {
+    let s = setup(case).ok_or(Skip::NoScene)?;
+    let screen = screen_of(&s)?;
+    let polys = screen_polys(&screen);
     let visible = Bsp::build(&screen).visible_set();
-    Some(Run {
+    Ok(Run {
         screen,
         visible,
         polys,
@@ -1183,8 +1195,8 @@ fn depth_num(pl: &Plane, p: &HPoint) -> BigInt {
 // The properties
 // ------------------------------------------------------------------------------------------------
 
-fn check_disjoint(case: &Case) {
-    let Some(r) = run(case) else { return };
+fn check_disjoint(case: &Case) -> Result<(), Skip> {
+    let r = run(case)?;
     let pieces = exact_pieces(&r.visible);
     for i in 0..pieces.len() {
         for j in i + 1..pieces.len() {
@@ -1212,10 +1224,11 @@ fn check_disjoint(case: &Case) {
             );
         }
     }
+    Ok(())
 }
 
-fn check_coverage(case: &Case) {
-    let Some(r) = run(case) else { return };
+fn check_coverage(case: &Case) -> Result<(), Skip> {
+    let r = run(case)?;
     let pieces = exact_pieces(&r.visible);
     let shapes: Vec<&[[i64; 2]]> = r.polys.iter().map(|p| p.pts.as_slice()).collect();
     let union = union_area(&shapes);
@@ -1233,7 +1246,7 @@ fn check_coverage(case: &Case) {
     );
     // Sample points strictly inside screen polygons.
     if r.polys.is_empty() {
-        return;
+        return Ok(());
     }
     let mut rng = Rng(case.seed ^ 0x5eed_c0ff_ee00_0001);
     for _ in 0..24 {
@@ -1264,10 +1277,11 @@ fn check_coverage(case: &Case) {
             pt.f64()
         );
     }
+    Ok(())
 }
 
-fn check_nearest(case: &Case) {
-    let Some(r) = run(case) else { return };
+fn check_nearest(case: &Case) -> Result<(), Skip> {
+    let r = run(case)?;
     let pieces = exact_pieces(&r.visible);
     let mut rng = Rng(case.seed ^ 0x0dde_ba11_0000_0003);
     // At most 48 samples: two in each of 24 random pieces.
@@ -1327,10 +1341,11 @@ fn check_nearest(case: &Case) {
             }
         }
     }
+    Ok(())
 }
 
-fn check_provenance(case: &Case) {
-    let Some(r) = run(case) else { return };
+fn check_provenance(case: &Case) -> Result<(), Skip> {
+    let r = run(case)?;
     for (i, piece) in r.visible.pieces.iter().enumerate() {
         let p = exact_piece(piece).unwrap_or_else(|e| panic!("piece {i} malformed: {e}"));
         let own = &r.polys[p.poly].pts;
@@ -1362,14 +1377,14 @@ fn check_provenance(case: &Case) {
             .iter()
             .all(|p| (p.poly as usize) < r.screen.polys.len())
     );
+    Ok(())
 }
 
-fn check_determinism(case: &Case) {
-    let (Some(s1), Some(s2)) = (setup(case), setup(case)) else {
-        return;
-    };
-    let p1 = prepare(&s1.scene, &s1.camera, s1.cull).screen;
-    let p2 = prepare(&s2.scene, &s2.camera, s2.cull).screen;
+fn check_determinism(case: &Case) -> Result<(), Skip> {
+    let s1 = setup(case).ok_or(Skip::NoScene)?;
+    let s2 = setup(case).ok_or(Skip::NoScene)?;
+    let p1 = screen_of(&s1)?;
+    let p2 = screen_of(&s2)?;
     assert_eq!(p1.points, p2.points);
     assert_eq!(p1.polys, p2.polys);
     let v1 = Bsp::build(&p1).visible_set();
@@ -1393,31 +1408,40 @@ fn check_determinism(case: &Case) {
             "SVG differs between two builds of one scene ({fill:?})"
         );
     }
+    Ok(())
 }
 
 // ------------------------------------------------------------------------------------------------
 // Runners
 // ------------------------------------------------------------------------------------------------
 
-fn check(name: &str, cases: u32, property: fn(&Case)) {
+fn check(name: &str, cases: u32, property: fn(&Case) -> Result<(), Skip>) {
     let config = Config {
         cases,
+        // Skipped cases are rejected and replaced; allow up to one for every case.
+        max_global_rejects: cases,
         failure_persistence: None,
         ..Config::default()
     };
     let mut runner = TestRunner::new(config);
+    let skipped: [AtomicUsize; 3] = Default::default();
     let start = std::time::Instant::now();
-    let result = runner.run(&cases_strategy(), |c| {
-        property(&c);
-        Ok(())
+    let result = runner.run(&cases_strategy(), |c| match property(&c) {
+        Ok(()) => Ok(()),
+        Err(why) => {
+            skipped[why as usize].fetch_add(1, AtomicOrdering::Relaxed);
+            Err(TestCaseError::reject(format!("{why:?}")))
+        }
     });
+    let skipped = skipped.map(|a| a.into_inner());
     match result {
         Ok(()) => eprintln!(
-            "{name}: {cases} cases in {:.1} s (skipped so far in this process: {} with a \
-             non-simple polygon, {} with a straight corner)",
+            "{name}: {cases} cases checked in {:.1} s; rejected and replaced: {} without faces, \
+             {} with a non-simple polygon, {} with a straight corner",
             start.elapsed().as_secs_f64(),
-            NON_SIMPLE.load(AtomicOrdering::Relaxed),
-            STRAIGHT_CORNERS.load(AtomicOrdering::Relaxed)
+            skipped[Skip::NoScene as usize],
+            skipped[Skip::NonSimple as usize],
+            skipped[Skip::StraightCorner as usize],
         ),
         Err(TestError::Fail(reason, case)) => {
             panic!("{name} failed: {reason}\nminimal case: {case:?}")
