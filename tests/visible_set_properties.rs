@@ -1348,6 +1348,10 @@ fn check_provenance(case: &Case) -> Result<(), Skip> {
     let r = run(case)?;
     for (i, piece) in r.visible.pieces.iter().enumerate() {
         let p = exact_piece(piece).unwrap_or_else(|e| panic!("piece {i} malformed: {e}"));
+        assert_eq!(
+            piece.support, r.polys[p.poly].plane,
+            "piece {i} is not in its polygon's support plane"
+        );
         let own = &r.polys[p.poly].pts;
         for (k, v) in p.verts.iter().enumerate() {
             assert_ne!(
@@ -1516,6 +1520,141 @@ fn provenance_long() {
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn determinism_long() {
     check("determinism", long_cases(), check_determinism);
+}
+
+// ------------------------------------------------------------------------------------------------
+// The checkers themselves
+// ------------------------------------------------------------------------------------------------
+
+fn shoelace(pts: &[[i64; 2]]) -> BigRational {
+    let n = pts.len();
+    let s: i128 = (0..n)
+        .map(|k| {
+            let (p, q) = (pts[k], pts[(k + 1) % n]);
+            p[0] as i128 * q[1] as i128 - q[0] as i128 * p[1] as i128
+        })
+        .sum();
+    BigRational::new(big(s.abs()), big(2))
+}
+
+fn r(n: i64, d: i64) -> BigRational {
+    BigRational::new(big(n as i128), big(d as i128))
+}
+
+#[test]
+fn union_area_of_known_shapes() {
+    let sq = |x: i64, y: i64, s: i64| vec![[x, y], [x + s, y], [x + s, y + s], [x, y + s]];
+    let a = sq(0, 0, 10);
+    // Overlapping squares: 100 + 100 - 25.
+    assert_eq!(union_area(&[&a, &sq(5, 5, 10)]), r(175, 1));
+    // A duplicate, clockwise: still 100. Sharing an edge: 200. Inside: 100.
+    let cw: Vec<[i64; 2]> = a.iter().rev().copied().collect();
+    assert_eq!(union_area(&[&a, &cw]), r(100, 1));
+    assert_eq!(union_area(&[&a, &sq(10, 0, 10)]), r(200, 1));
+    assert_eq!(union_area(&[&a, &sq(2, 2, 3)]), r(100, 1));
+    // An L shape (non-convex), and a square over its notch: 300 + 100 - (100 - 25).
+    let l = vec![[0, 0], [20, 0], [20, 10], [10, 10], [10, 20], [0, 20]];
+    assert_eq!(union_area(&[&l]), r(300, 1));
+    assert_eq!(union_area(&[&l, &sq(5, 5, 10)]), r(325, 1));
+    // A thin triangle crossing a square: 100 + the parts of the triangle outside it.
+    let thin = vec![[-3, 4], [13, 5], [-3, 6]];
+    // The triangle is 16 wide and 2 high at x = -3, closing at x = 13: area 16. Inside the
+    // square (0 <= x <= 10) it spans widths from 2·13/16 down to 2·3/16.
+    let inside = r(10, 1) * (r(26, 16) + r(6, 16)) / r(2, 1);
+    assert_eq!(union_area(&[&a, &thin]), r(100, 1) + r(16, 1) - inside);
+}
+
+#[test]
+fn locate_is_exact_on_boundaries_and_in_notches() {
+    let l = vec![[0, 0], [20, 0], [20, 10], [10, 10], [10, 20], [0, 20]];
+    let at = |x: i64, y: i64, w: i64| HPoint {
+        x: big(x as i128),
+        y: big(y as i128),
+        w: big(w as i128),
+    };
+    assert_eq!(locate(&l, &at(5, 5, 1)), Loc::Inside);
+    assert_eq!(locate(&l, &at(15, 15, 1)), Loc::Outside);
+    assert_eq!(locate(&l, &at(10, 15, 1)), Loc::Boundary);
+    assert_eq!(locate(&l, &at(10, 10, 1)), Loc::Boundary);
+    assert_eq!(locate(&l, &at(20, 0, 1)), Loc::Boundary);
+    // Just inside and just outside the notch corner, a third of a unit away.
+    assert_eq!(locate(&l, &at(29, 29, 3)), Loc::Inside);
+    assert_eq!(locate(&l, &at(31, 31, 3)), Loc::Outside);
+    // On the horizontal line of a vertex, left of it and right of the polygon.
+    assert_eq!(locate(&l, &at(25, 10, 1)), Loc::Outside);
+    assert_eq!(locate(&l, &at(-1, 10, 1)), Loc::Outside);
+    assert_eq!(locate(&l, &at(15, 10, 1)), Loc::Boundary);
+}
+
+/// Area of the intersection of two counter-clockwise triangles: Sutherland–Hodgman in rationals.
+fn triangle_intersection_area(a: &[[i64; 2]; 3], b: &[[i64; 2]; 3]) -> BigRational {
+    let q = |p: [i64; 2]| [r(p[0], 1), r(p[1], 1)];
+    let mut ring: Vec<[BigRational; 2]> = b.iter().map(|&p| q(p)).collect();
+    for k in 0..3 {
+        let (p, e) = (q(a[k]), q(a[(k + 1) % 3]));
+        // Left of p→e is inside: f(x) = (e - p) x (x - p) >= 0.
+        let f = |x: &[BigRational; 2]| {
+            (&e[0] - &p[0]) * (&x[1] - &p[1]) - (&e[1] - &p[1]) * (&x[0] - &p[0])
+        };
+        let mut out = Vec::new();
+        for i in 0..ring.len() {
+            let (u, v) = (&ring[i], &ring[(i + 1) % ring.len()]);
+            let (fu, fv) = (f(u), f(v));
+            if !fu.is_negative() {
+                out.push(u.clone());
+            }
+            if (fu.is_negative() && fv.is_positive()) || (fu.is_positive() && fv.is_negative()) {
+                let t = &fu / (&fu - &fv);
+                out.push([&u[0] + &t * (&v[0] - &u[0]), &u[1] + &t * (&v[1] - &u[1])]);
+            }
+        }
+        ring = out;
+        if ring.is_empty() {
+            return BigRational::zero();
+        }
+    }
+    twice_area(&ring) / r(2, 1)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Two random triangles: the slab union is area(a) + area(b) - area(a ∩ b), the intersection
+    /// clipped independently (crossings at rational abscissas).
+    #[test]
+    fn union_area_agrees_with_inclusion_exclusion(
+        c in prop::array::uniform6(-1000i64..1000),
+        d in prop::array::uniform6(-1000i64..1000),
+    ) {
+        let tri = |c: [i64; 6]| {
+            let t = [[c[0], c[1]], [c[2], c[3]], [c[4], c[5]]];
+            match orient(t[0], t[1], t[2]) {
+                Ordering::Greater => Some(t),
+                Ordering::Less => Some([t[0], t[2], t[1]]),
+                Ordering::Equal => None,
+            }
+        };
+        let (Some(a), Some(b)) = (tri(c), tri(d)) else { return Ok(()) };
+        let want = shoelace(&a) + shoelace(&b) - triangle_intersection_area(&a, &b);
+        prop_assert_eq!(union_area(&[&a, &b]), want);
+    }
+
+    /// The slab union agrees with the shoelace formula where the answer is known: one star, a
+    /// star and its duplicate, a star and a far copy.
+    #[test]
+    fn union_area_agrees_with_shoelace(seed in any::<u64>()) {
+        let mut g = Gen { rng: Rng(seed), dyadic: false };
+        let s: Vec<[i64; 2]> = star(&mut g)
+            .into_iter()
+            .map(|[u, v]| [(u * 1e6) as i64, (v * 1e6) as i64])
+            .collect();
+        prop_assume!(is_simple(&s));
+        let far: Vec<[i64; 2]> = s.iter().map(|p| [p[0] + 3_000_000, p[1] - 7]).collect();
+        let area = shoelace(&s);
+        prop_assert_eq!(union_area(&[&s]), area.clone());
+        prop_assert_eq!(union_area(&[&s, &s]), area.clone());
+        prop_assert_eq!(union_area(&[&s, &far]), area * r(2, 1));
+    }
 }
 
 // ------------------------------------------------------------------------------------------------
