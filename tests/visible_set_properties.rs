@@ -24,15 +24,28 @@
 //! Scenes: random triangle soups, closed meshes (rotated boxes, low-resolution spheres,
 //! tetrahedra) interpenetrating each other, interpenetrating pairs, coplanar overlapping faces
 //! (exact: layers on one plane seen along its normal, duplicated faces), meshes sharing edges and
-//! vertices (height fields, fans), T-junctions, cyclic bars, and mixtures; seen by random
-//! perspective and orthographic cameras, some with the eye among the faces (the near plane cuts
-//! them), some looking exactly along -z, and an "exact" orthographic camera under which dyadic
-//! world coordinates land on the grid without rounding (exact coplanarity, exact T-junctions).
+//! vertices (height fields, fans), fans of thin triangles around a hub with faces through it,
+//! T-junctions, non-convex (star) polygons, cyclic bars, and mixtures; seen by random perspective
+//! and orthographic cameras, some with the eye among the faces (the near plane cuts them), some
+//! looking exactly along -z, and an "exact" orthographic camera under which dyadic world
+//! coordinates land on the grid without rounding (exact coplanarity, exact T-junctions).
 //!
-//! Normal run (2,000 cases per property, 10,000 in all):
+//! Known bugs found here (each with an ignored test at the end of this file):
+//! - straight corners: a convex piece keeps a corner whose two edges are collinear, so two
+//!   adjacent lines are parallel, and `Bsp::visible_set` can panic. Cases with a straight corner
+//!   are skipped (rejected and replaced, counted) while `SKIP_STRAIGHT_CORNERS` is set.
+//! - f64 bounds: `bsp::bounds` trusts f64 vertices to within one grid unit, which they are not
+//!   near nearly parallel lines; the coverage pass then misses an overlapping piece (rare: found
+//!   once, then not again in 270,000 random cases; the normal run uses fixed seeds so that CI
+//!   does not flake on it).
+//!
+//! Normal run (2,000 cases per property, 10,000 in all; a fixed RNG seed per property unless
+//! PROPTEST_RNG_SEED is set):
 //!     cargo test --release --test visible_set_properties
-//! Long run (SIGHTLINE_PROP_CASES per property, default 200,000):
-//!     SIGHTLINE_PROP_CASES=200000 cargo test --release --test visible_set_properties -- --ignored
+//! Long run (SIGHTLINE_PROP_CASES per property, default 200,000; random seeds):
+//!     SIGHTLINE_PROP_CASES=200000 cargo test --release --test visible_set_properties -- --ignored _long
+//! A failure prints its minimal `Case { kind, n, seed }`: the scene, camera and cull mode all
+//! follow from it (`setup`).
 
 mod support;
 
@@ -41,14 +54,14 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
 use proptest::prelude::*;
-use proptest::test_runner::{Config, TestCaseError, TestError, TestRunner};
+use proptest::test_runner::{Config, RngSeed, TestCaseError, TestError, TestRunner};
 use sightline::camera::{Camera, Projection};
-use sightline::exact::Plane;
 use sightline::exact::polygon::{Piece, same_plane, separated};
 use sightline::exact::predicates::Line;
+use sightline::exact::{GridPoint, Plane};
 use sightline::output::svg::{SvgOptions, write_svg};
 use sightline::pipeline::{Fill, prepare};
-use sightline::project::{CullMode, ScreenScene};
+use sightline::project::{CullMode, ScreenPoly, ScreenScene};
 use sightline::scene::{Scene, SceneBuilder, primitives};
 use sightline::visibility::bsp::{Bsp, VisibleSet, initial_pieces};
 use sightline::visibility::{BspMethod, VisibilityMethod};
@@ -68,17 +81,19 @@ enum Kind {
     Pairs,
     Coplanar,
     Shared,
+    Slivers,
     TJunctions,
     Bars,
     Mixed,
 }
 
-const KINDS: [Kind; 8] = [
+const KINDS: [Kind; 9] = [
     Kind::Triangles,
     Kind::Closed,
     Kind::Pairs,
     Kind::Coplanar,
     Kind::Shared,
+    Kind::Slivers,
     Kind::TJunctions,
     Kind::Bars,
     Kind::Mixed,
@@ -410,6 +425,44 @@ fn coplanar(g: &mut Gen, b: &mut SceneBuilder, n: usize) {
     }
 }
 
+/// Thin triangles fanning out of one hub (nearly parallel edges meeting at a shared corner) and
+/// faces passing through or near the hub (cut lines nearly parallel to those edges): where f64
+/// crossings of lines are at their worst.
+fn slivers(g: &mut Gen, b: &mut SceneBuilder, n: usize) {
+    let hub = g.point(-0.3, 0.3);
+    for _ in 0..g.int(1, 2) {
+        b.begin_mesh("sliver fan");
+        let m = b.default_material();
+        let h = b.add_vertex(hub);
+        let k = 2 + n;
+        let (base, spread) = (g.rng.range(0.0, TAU), g.rng.range(0.02, 0.6));
+        let ring: Vec<u32> = (0..=k)
+            .map(|i| {
+                let t = base + spread * (i as f64 + g.rng.range(-0.3, 0.3)) / k as f64;
+                let r = g.rng.range(0.8, 1.6);
+                let z = g.rng.range(-0.6, 0.6);
+                let p = g.qv(hub + DVec3::new(r * t.cos(), r * t.sin(), z));
+                b.add_vertex(p)
+            })
+            .collect();
+        for i in 0..k {
+            b.add_face(&[h, ring[i], ring[i + 1]], m);
+        }
+    }
+    for _ in 0..g.int(1, 3) {
+        let through = if g.chance(0.5) {
+            hub
+        } else {
+            g.near(hub, 0.02)
+        };
+        let (u, v) = (g.direction(), g.direction());
+        add_polygon(
+            b,
+            &[through, g.qv(through + u * 1.5), g.qv(through + v * 1.5)],
+        );
+    }
+}
+
 /// Faces sharing edges and vertices: a height field of triangles, or a fan.
 fn shared(g: &mut Gen, b: &mut SceneBuilder, n: usize) {
     b.begin_mesh("shared");
@@ -522,6 +575,7 @@ fn generate(g: &mut Gen, b: &mut SceneBuilder, kind: Kind, n: usize) {
         }
         Kind::Coplanar => coplanar(g, b, n + 2),
         Kind::Shared => shared(g, b, n),
+        Kind::Slivers => slivers(g, b, n),
         Kind::TJunctions => t_junctions(g, b, n),
         Kind::Bars => bars(g, b, n),
         Kind::Mixed => {
@@ -611,7 +665,7 @@ fn setup(case: &Case) -> Option<Setup> {
     let cam = match case.kind {
         Kind::Coplanar if u < 0.6 => CamKind::Exact,
         Kind::Coplanar if u < 0.85 => CamKind::AxisZ,
-        Kind::Shared | Kind::TJunctions if u < 0.5 => CamKind::Exact,
+        Kind::Shared | Kind::TJunctions | Kind::Slivers if u < 0.3 => CamKind::Exact,
         Kind::Triangles | Kind::Closed | Kind::Pairs | Kind::Mixed if u < 0.15 => CamKind::Exact,
         Kind::Bars if u < 0.5 => CamKind::AxisZ,
         _ if u > 0.9 => CamKind::AxisZ,
@@ -1419,18 +1473,36 @@ fn check_determinism(case: &Case) -> Result<(), Skip> {
 // Runners
 // ------------------------------------------------------------------------------------------------
 
-fn check(name: &str, cases: u32, property: fn(&Case) -> Result<(), Skip>) {
-    let config = Config {
-        cases,
+/// How a run draws its cases.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Seeding {
+    /// The normal run: a fixed RNG seed per property (so CI sees the same 10,000 cases every time
+    /// and a failure reproduces), unless `PROPTEST_RNG_SEED` is set.
+    Fixed,
+    /// The long runs: a random seed, unless `PROPTEST_RNG_SEED` is set.
+    Random,
+}
+
+fn check(name: &str, count: u32, seeding: Seeding, property: fn(&Case) -> Result<(), Skip>) {
+    let mut config = Config {
+        cases: count,
         // Skipped cases are rejected and replaced; allow up to one for every case.
-        max_global_rejects: cases,
+        max_global_rejects: count,
         failure_persistence: None,
         ..Config::default()
     };
+    if seeding == Seeding::Fixed && config.rng_seed == RngSeed::Random {
+        // FNV-1a of the name: each property sees different cases.
+        let seed = name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+            (h ^ b as u64).wrapping_mul(0x100_0000_01b3)
+        });
+        config.rng_seed = RngSeed::Fixed(seed);
+    }
+    let seed = config.rng_seed;
     let mut runner = TestRunner::new(config);
     let skipped: [AtomicUsize; 3] = Default::default();
     let start = std::time::Instant::now();
-    let result = runner.run(&cases_strategy(), |c| match property(&c) {
+    let result = runner.run(&cases(), |c| match property(&c) {
         Ok(()) => Ok(()),
         Err(why) => {
             skipped[why as usize].fetch_add(1, AtomicOrdering::Relaxed);
@@ -1440,22 +1512,18 @@ fn check(name: &str, cases: u32, property: fn(&Case) -> Result<(), Skip>) {
     let skipped = skipped.map(|a| a.into_inner());
     match result {
         Ok(()) => eprintln!(
-            "{name}: {cases} cases checked in {:.1} s; rejected and replaced: {} without faces, \
-             {} with a non-simple polygon, {} with a straight corner",
+            "{name}: {count} cases checked in {:.1} s (rng seed {seed:?}); rejected and replaced: \
+             {} without faces, {} with a non-simple polygon, {} with a straight corner",
             start.elapsed().as_secs_f64(),
             skipped[Skip::NoScene as usize],
             skipped[Skip::NonSimple as usize],
             skipped[Skip::StraightCorner as usize],
         ),
         Err(TestError::Fail(reason, case)) => {
-            panic!("{name} failed: {reason}\nminimal case: {case:?}")
+            panic!("{name} failed: {reason}\nminimal case: {case:?} (rng seed {seed:?})")
         }
         Err(e) => panic!("{name}: {e}"),
     }
-}
-
-fn cases_strategy() -> impl Strategy<Value = Case> {
-    cases()
 }
 
 const CASES: u32 = 2000;
@@ -1469,57 +1537,67 @@ fn long_cases() -> u32 {
 
 #[test]
 fn disjoint() {
-    check("disjoint", CASES, check_disjoint);
+    check("disjoint", CASES, Seeding::Fixed, check_disjoint);
 }
 
 #[test]
 fn coverage() {
-    check("coverage", CASES, check_coverage);
+    check("coverage", CASES, Seeding::Fixed, check_coverage);
 }
 
 #[test]
 fn nearest() {
-    check("nearest", CASES, check_nearest);
+    check("nearest", CASES, Seeding::Fixed, check_nearest);
 }
 
 #[test]
 fn provenance() {
-    check("provenance", CASES, check_provenance);
+    check("provenance", CASES, Seeding::Fixed, check_provenance);
 }
 
 #[test]
 fn determinism() {
-    check("determinism", CASES, check_determinism);
+    check("determinism", CASES, Seeding::Fixed, check_determinism);
 }
 
 #[test]
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn disjoint_long() {
-    check("disjoint", long_cases(), check_disjoint);
+    check("disjoint", long_cases(), Seeding::Random, check_disjoint);
 }
 
 #[test]
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn coverage_long() {
-    check("coverage", long_cases(), check_coverage);
+    check("coverage", long_cases(), Seeding::Random, check_coverage);
 }
 
 #[test]
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn nearest_long() {
-    check("nearest", long_cases(), check_nearest);
+    check("nearest", long_cases(), Seeding::Random, check_nearest);
 }
 
 #[test]
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn provenance_long() {
-    check("provenance", long_cases(), check_provenance);
+    check(
+        "provenance",
+        long_cases(),
+        Seeding::Random,
+        check_provenance,
+    );
 }
 
 #[test]
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn determinism_long() {
-    check("determinism", long_cases(), check_determinism);
+    check(
+        "determinism",
+        long_cases(),
+        Seeding::Random,
+        check_determinism,
+    );
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -1846,5 +1924,132 @@ fn straight_corner_against_a_cut_line_panics() {
         .map(|p| p.twice_area.clone())
         .sum::<BigRational>()
         / BigRational::from_integer(big(2));
+    assert_eq!(area, union_area(&shapes));
+}
+
+/// Four screen polygons (three faces of a box and a sphere band, seen from inside by a wide
+/// perspective camera, clipped at the guard band x = 2^23), reduced from the property case
+/// `Case { kind: Closed, n: 3, seed: 17088296915782442314 }`. All meet at grid corner
+/// (108499, -4718656), where the BSP cuts a sliver a fraction of a unit wide.
+fn sliver_scene() -> ScreenScene {
+    let polys: [(u32, bool, &[[i32; 3]]); 4] = [
+        (
+            1,
+            false,
+            &[
+                [108499, -4718656, 4059312],
+                [8388608, -1660364, 970694],
+                [8388608, -8388608, -3696744],
+                [4275160, -8388608, -1108396],
+            ],
+        ),
+        (
+            1,
+            false,
+            &[
+                [8388608, -1660364, 970694],
+                [108499, -4718656, 4059312],
+                [1037692, -1409057, 5770522],
+                [8388608, -1282181, 1233043],
+            ],
+        ),
+        (
+            2,
+            true,
+            &[
+                [-2044567, -2724711, 2634517],
+                [108499, -4718656, 4059312],
+                [4444091, -8388608, -7564398],
+                [4465657, -8388608, -8388608],
+                [750062, -5006181, -8388608],
+            ],
+        ),
+        (
+            5,
+            false,
+            &[
+                [1037692, -1409057, 5770522],
+                [108499, -4718656, 4059312],
+                [-2044567, -2724711, 2634517],
+            ],
+        ),
+    ];
+    let mut screen = ScreenScene {
+        width: 48,
+        height: 40,
+        ..ScreenScene::default()
+    };
+    for (face, (id, front, corners)) in polys.into_iter().enumerate() {
+        let start = screen.points.len() as u32;
+        screen
+            .points
+            .extend(corners.iter().map(|&[x, y, z]| GridPoint { x, y, z }));
+        let pts = &screen.points[start as usize..];
+        screen.polys.push(ScreenPoly {
+            face: face as u32,
+            id,
+            start,
+            len: corners.len() as u32,
+            plane: Plane::of_polygon(pts).unwrap(),
+            front,
+        });
+    }
+    screen
+}
+
+/// BUG (f64 bounds are not a filter): `bsp::bounds` widens a piece's f64 vertices by one grid
+/// unit and calls that "a filter, never a decision", but `Piece::vertices_f64` (through
+/// `crossing_f64`) solves the crossing of two lines in f64, and for two nearly parallel lines with
+/// large coefficients (a `Line::Cut`) the error exceeds a unit: here a vertex of a BSP fragment is
+/// 2.5 units off.
+#[test]
+#[ignore = "bug: vertices_f64 errs by more than the one unit bsp::bounds widens by"]
+fn f64_vertices_stay_within_the_unit_the_coverage_bounds_allow() {
+    let screen = sliver_scene();
+    for (i, p) in Bsp::build(&screen).back_to_front().iter().enumerate() {
+        let exact = exact_piece(p).unwrap_or_else(|e| panic!("fragment {i}: {e}"));
+        for (k, (v, f)) in exact.verts.iter().zip(p.vertices_f64()).enumerate() {
+            let [x, y] = v.f64();
+            let err = (x - f[0]).abs().max((y - f[1]).abs());
+            assert!(
+                err <= 1.0,
+                "fragment {i} (polygon {}) vertex {k}: exact ({x}, {y}), f64 ({}, {}): {err} units \
+                 off",
+                p.poly,
+                f[0],
+                f[1]
+            );
+        }
+    }
+}
+
+/// BUG (f64 bounds are not a filter), consequence: with bounds off by more than their margin,
+/// `Coverage::insert` does not meet a visible piece that overlaps the new one, so it is not
+/// subtracted: a sliver of face 2 stays visible over face 1, which is nearer there. The visible
+/// set then overlaps itself and its area exceeds the union of the polygons (by about 5e-12 square
+/// grid units). Widening `bounds` by 1000 units instead of 1 makes this case pass.
+#[test]
+#[ignore = "bug: Coverage::insert misses an overlapping piece whose f64 bounds are off"]
+fn sliver_at_a_shared_corner_is_hidden() {
+    let screen = sliver_scene();
+    let visible = Bsp::build(&screen).visible_set();
+    let pieces = exact_pieces(&visible);
+    for i in 0..pieces.len() {
+        for j in i + 1..pieces.len() {
+            assert!(
+                sat_separated(&pieces[i], &pieces[j]),
+                "visible pieces {i} (polygon {}) and {j} (polygon {}) overlap",
+                pieces[i].poly,
+                pieces[j].poly
+            );
+        }
+    }
+    let polys = screen_polys(&screen);
+    let shapes: Vec<&[[i64; 2]]> = polys.iter().map(|p| p.pts.as_slice()).collect();
+    let area: BigRational = pieces
+        .iter()
+        .map(|p| p.twice_area.clone())
+        .sum::<BigRational>()
+        / r(2, 1);
     assert_eq!(area, union_area(&shapes));
 }
