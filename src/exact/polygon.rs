@@ -79,10 +79,11 @@ impl Piece {
                 Some([[a.x, a.y], [b.x, b.y]])
             })
             .collect();
-        let frame = corners.iter().fold(
-            [i32::MAX, i32::MAX, i32::MIN, i32::MIN],
-            |f, c| [f[0].min(c.x), f[1].min(c.y), f[2].max(c.x), f[3].max(c.y)],
-        );
+        let frame = corners
+            .iter()
+            .fold([i32::MAX, i32::MAX, i32::MIN, i32::MIN], |f, c| {
+                [f[0].min(c.x), f[1].min(c.y), f[2].max(c.x), f[3].max(c.y)]
+            });
         let corners = corners.iter().map(|c| Some([c.x, c.y])).collect();
         Piece {
             poly,
@@ -331,7 +332,12 @@ impl Piece {
             ];
         }
         // Both boxes contain the piece: so does their intersection.
-        [b[0].max(f[0]), b[1].max(f[1]), b[2].min(f[2]), b[3].min(f[3])]
+        [
+            b[0].max(f[0]),
+            b[1].max(f[1]),
+            b[2].min(f[2]),
+            b[3].min(f[3]),
+        ]
     }
 
     /// Vertex k in f64 grid coordinates (rounded: for output and bounds, never decisions).
