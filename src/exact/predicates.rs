@@ -357,7 +357,7 @@ pub fn crossing_with_error(l: &Line, m: &Line) -> Option<([f64; 2], f64)> {
     let ([a0, b0, d0], [a1, b1, d1]) = (l.filtered(), m.filtered());
     let den = a0.value * b1.value - a1.value * b0.value;
     let e_den = 9.0 * U * (a0.magnitude * b1.magnitude + a1.magnitude * b0.magnitude);
-    if !(den.abs() > 2.0 * e_den) || !den.is_finite() {
+    if !den.is_finite() || den.abs() <= 2.0 * e_den || e_den.is_nan() {
         return None;
     }
     let nx = b0.value * d1.value - b1.value * d0.value;
