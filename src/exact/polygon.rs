@@ -13,7 +13,7 @@
 //! Non-convex faces are cut into convex pieces first ([`convex_pieces`]): every later operation
 //! (BSP splitting, coverage) then needs only the convex split.
 
-use super::predicates::{Line, depth_order_at, line_side};
+use super::predicates::{Line, crossing_f64, depth_order_at, line_side};
 use super::{GridPoint, Plane};
 use std::cmp::Ordering;
 
@@ -393,26 +393,6 @@ fn grid_vertex_plane_sign(s: &Plane, x: i32, y: i32, q: &Plane) -> Option<Orderi
         .checked_mul(qv)?
         .checked_sub((q.c as i128).checked_mul(sv)?)?;
     Some(v.cmp(&0))
-}
-
-/// Where two lines cross, in f64 grid coordinates (for output only).
-pub fn crossing_f64(l: &Line, m: &Line) -> [f64; 2] {
-    let c = |l: &Line| -> [f64; 3] {
-        match l {
-            Line::Edge(p) => [p.a as f64, p.b as f64, p.d as f64],
-            Line::Cut(p, q) => {
-                let (pc, qc) = (p.c as f64, q.c as f64);
-                [
-                    qc * p.a as f64 - pc * q.a as f64,
-                    qc * p.b as f64 - pc * q.b as f64,
-                    qc * p.d as f64 - pc * q.d as f64,
-                ]
-            }
-        }
-    };
-    let ([a0, b0, d0], [a1, b1, d1]) = (c(l), c(m));
-    let den = a0 * b1 - a1 * b0;
-    [(b0 * d1 - b1 * d0) / den, (a1 * d0 - a0 * d1) / den]
 }
 
 /// Cuts a simple grid polygon (counter-clockwise, y up, no repeated consecutive points) into

@@ -345,6 +345,23 @@ pub fn depth_order_at(m: [&Line; 2], s: &Plane, t: &Plane) -> Option<Ordering> {
     Some(combine_signs(det_sign, d_sign))
 }
 
+/// Where two lines cross, in f64 grid coordinates, rounded: for output and bounds, never for a
+/// decision. The same lines in either order, or with their sides swapped, give the same bits.
+pub fn crossing_f64(l: &Line, m: &Line) -> [f64; 2] {
+    let (den, nx, ny) = crossing_terms(l.filtered(), m.filtered());
+    [nx / den, ny / den]
+}
+
+/// Cramer's rule for a0·x + b0·y + d0 = 0, a1·x + b1·y + d1 = 0: (denominator, x and y
+/// numerators).
+fn crossing_terms([a0, b0, d0]: [Entry; 3], [a1, b1, d1]: [Entry; 3]) -> (f64, f64, f64) {
+    (
+        a0.value * b1.value - a1.value * b0.value,
+        b0.value * d1.value - b1.value * d0.value,
+        a1.value * d0.value - a0.value * d1.value,
+    )
+}
+
 /// Where two lines cross, in f64, with a bound on the error of each coordinate; `None` when the
 /// lines are too close to parallel for the bound to hold (the caller must then fall back on
 /// something exact, such as the bounds of the face).
@@ -355,13 +372,11 @@ pub fn depth_order_at(m: [&Line; 2], s: &Plane, t: &Plane) -> Option<Ordering> {
 /// `(e_num + |q|·e_den) / (|den| - e_den)` plus one rounding. The bound below doubles that.
 pub fn crossing_with_error(l: &Line, m: &Line) -> Option<([f64; 2], f64)> {
     let ([a0, b0, d0], [a1, b1, d1]) = (l.filtered(), m.filtered());
-    let den = a0.value * b1.value - a1.value * b0.value;
+    let (den, nx, ny) = crossing_terms([a0, b0, d0], [a1, b1, d1]);
     let e_den = 9.0 * U * (a0.magnitude * b1.magnitude + a1.magnitude * b0.magnitude);
     if !den.is_finite() || den.abs() <= 2.0 * e_den || e_den.is_nan() {
         return None;
     }
-    let nx = b0.value * d1.value - b1.value * d0.value;
-    let ny = a1.value * d0.value - a0.value * d1.value;
     let e_nx = 9.0 * U * (b0.magnitude * d1.magnitude + b1.magnitude * d0.magnitude);
     let e_ny = 9.0 * U * (a1.magnitude * d0.magnitude + a0.magnitude * d1.magnitude);
     let (x, y) = (nx / den, ny / den);
