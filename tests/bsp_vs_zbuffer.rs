@@ -18,12 +18,7 @@ fn mismatches(scene: &Scene, camera: &Camera) -> (usize, usize) {
     let visible = bsp.visible_set();
     let b_ids = visible.face_ids(&prepared.screen);
     let (w, h) = (camera.width as usize, camera.height as usize);
-    let interior = interior_pixels(&z_ids, w, h);
-    let bad: Vec<_> = interior
-        .iter()
-        .filter(|&&k| z_ids[k] != b_ids[k])
-        .map(|&k| (k % w, k / w, z_ids[k], b_ids[k]))
-        .collect();
+    let (interior, bad) = interior_mismatches(&z_ids, &b_ids, w, h);
     assert!(
         bad.is_empty(),
         "{} interior mismatches, first {:?}; stats {:?}",

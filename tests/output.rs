@@ -15,7 +15,7 @@ use sightline::scene::primitives::sphere_scene;
 use sightline::scene::{Material, Scene, SceneBuilder};
 use sightline::visibility::{Painter, VisibilityMethod, methods};
 use std::path::Path;
-use support::{add_triangle, interior_pixels};
+use support::{add_triangle, interior_mismatches, pixel_of};
 
 fn item(face: u32, rings: Vec<Vec<[f64; 2]>>, color: [f64; 3], opacity: f64) -> DrawItem {
     DrawItem {
@@ -345,14 +345,6 @@ fn spec_camera(scene: &Scene, size: (u32, u32)) -> Camera {
     .unwrap()
 }
 
-/// Pixel containing the projection of world point `p`.
-fn pixel_of(camera: &Camera, p: DVec3) -> usize {
-    let q = camera.view_projection().project_point3(p);
-    let i = ((q.x + 1.0) / 2.0 * camera.width as f64) as usize;
-    let j = ((1.0 - q.y) / 2.0 * camera.height as f64) as usize;
-    j * camera.width as usize + i
-}
-
 #[test]
 fn seed_transparent_scene_blends_exactly() {
     check_seed_transparent(&Painter);
@@ -414,9 +406,8 @@ fn painter_mismatches(scene: &Scene, cam: &Camera) -> (usize, usize) {
     assert_eq!(r.stats["faces_drawn"], prepared.screen.polys.len());
     let ids = face_ids(&r.drawing);
     let (w, h) = (cam.width as usize, cam.height as usize);
-    let interior = interior_pixels(&reference, w, h);
-    let bad = interior.iter().filter(|&&k| ids[k] != reference[k]).count();
-    (bad, interior.len())
+    let (interior, bad) = interior_mismatches(&reference, &ids, w, h);
+    (bad.len(), interior.len())
 }
 
 #[test]
@@ -445,12 +436,7 @@ fn painter_misorders_a_long_face_on_the_primitives() {
         let f = scene.faces.iter().find(|f| f.id == id).unwrap();
         scene.meshes[f.mesh as usize].name.as_str()
     };
-    let interior = interior_pixels(&reference, 640, 480);
-    let bad: Vec<usize> = interior
-        .iter()
-        .copied()
-        .filter(|&k| ids[k] != reference[k])
-        .collect();
+    let (interior, bad) = interior_mismatches(&reference, &ids, 640, 480);
     assert!(!bad.is_empty());
     assert!(
         bad.len() * 1000 < interior.len(),
@@ -458,7 +444,7 @@ fn painter_misorders_a_long_face_on_the_primitives() {
         bad.len(),
         interior.len()
     );
-    let box_face = reference[bad[0]].unwrap();
+    let box_face = bad[0].2.unwrap();
     let deepest = |id: u32| {
         prepared
             .screen
@@ -470,8 +456,8 @@ fn painter_misorders_a_long_face_on_the_primitives() {
             .max()
             .unwrap()
     };
-    for &k in &bad {
-        let (z, p) = (reference[k].unwrap(), ids[k].unwrap());
+    for &(_, _, z, p) in &bad {
+        let (z, p) = (z.unwrap(), p.unwrap());
         assert_eq!(z, box_face);
         assert_eq!((mesh_of(z), mesh_of(p)), ("box", "sphere"));
         assert!(deepest(z) > deepest(p), "the box face sorts behind");

@@ -3,6 +3,8 @@
 //! (16-bit 49151) for red and 0.8889 (58253) for blue; with near 0.01 and far 1000, 65454 and
 //! 65463. Red is in front where they overlap.
 
+mod support;
+
 use glam::DVec3;
 use sightline::camera::{Camera, CameraSpec};
 use sightline::output::png::depth_to_u16;
@@ -11,6 +13,7 @@ use sightline::project::CullMode;
 use sightline::scene::Scene;
 use std::collections::BTreeMap;
 use std::path::Path;
+use support::pixel_of;
 
 fn seed_scene() -> Scene {
     sightline::load(Path::new("fixtures/seed_two_triangles.x3d"), None).expect("seed fixture loads")
@@ -44,13 +47,6 @@ fn depths_by_face(scene: &Scene, camera: &Camera) -> (DepthHistogram, Vec<u16>, 
         *hist.entry((id.unwrap_or(u32::MAX), *d)).or_insert(0) += 1;
     }
     (hist, depth, ids)
-}
-
-fn pixel_of(camera: &Camera, p: DVec3) -> usize {
-    let q = camera.view_projection().project_point3(p);
-    let i = ((q.x + 1.0) / 2.0 * camera.width as f64) as usize;
-    let j = ((1.0 - q.y) / 2.0 * camera.height as f64) as usize;
-    j * camera.width as usize + i
 }
 
 #[test]

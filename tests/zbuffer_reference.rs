@@ -16,13 +16,8 @@ fn check_against_brute_force(scene: &Scene, camera: &Camera, cull: CullMode) -> 
     let ids = zb.face_ids(&prepared.screen);
     let reference = brute_force_ids(scene, camera);
     let (w, h) = (camera.width as usize, camera.height as usize);
-    let interior = interior_pixels(&ids, w, h);
-    let mut mismatches = Vec::new();
-    for &k in &interior {
-        if ids[k] != reference[k] {
-            mismatches.push((k % w, k / w, ids[k], reference[k]));
-        }
-    }
+    // Interior pixels of the z-buffer image, where the brute force must agree.
+    let (interior, mismatches) = interior_mismatches(&ids, &reference, w, h);
     assert!(
         mismatches.is_empty(),
         "{} of {} interior pixels differ from the brute force, first: {:?}",

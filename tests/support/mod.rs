@@ -178,3 +178,31 @@ pub fn random_camera(eye: [f64; 3], ortho: bool, fov: f64, near: f64) -> Option<
     };
     cam.validate().is_ok().then_some(cam)
 }
+
+/// A mismatch at pixel (x, y): the reference's id, then the checked one.
+pub type Mismatch = (usize, usize, Option<u32>, Option<u32>);
+
+/// The interior pixels of `reference` (3x3 neighbourhood of one id) and those among them where
+/// `ids` differs.
+pub fn interior_mismatches(
+    reference: &[Option<u32>],
+    ids: &[Option<u32>],
+    w: usize,
+    h: usize,
+) -> (Vec<usize>, Vec<Mismatch>) {
+    let interior = interior_pixels(reference, w, h);
+    let bad = interior
+        .iter()
+        .filter(|&&k| ids[k] != reference[k])
+        .map(|&k| (k % w, k / w, reference[k], ids[k]))
+        .collect();
+    (interior, bad)
+}
+
+/// Row-major index of the pixel containing the projection of world point `p`.
+pub fn pixel_of(camera: &Camera, p: DVec3) -> usize {
+    let q = camera.view_projection().project_point3(p);
+    let i = ((q.x + 1.0) / 2.0 * camera.width as f64) as usize;
+    let j = ((1.0 - q.y) / 2.0 * camera.height as f64) as usize;
+    j * camera.width as usize + i
+}
