@@ -217,8 +217,11 @@ struct BenchArgs {
 enum BenchMethod {
     /// The exact z-buffer.
     Zbuffer,
-    /// 3D BSP + coverage: the exact visible set.
+    /// The exact visible set, as `render --method bsp` computes it for opaque scenes.
     Bsp,
+    /// The exact visible set through the full 3D BSP walked front to back (the painter order
+    /// translucent scenes need); slow on interpenetrating soups.
+    BspTree,
 }
 
 fn parse_vec3(s: &str) -> Result<DVec3, String> {
@@ -593,8 +596,21 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
                 )
             }
             BenchMethod::Bsp => {
+                let (visible, cs) = sightline::visibility::bsp::visible_set(&prepared.screen);
+                method_times.push(t.elapsed().as_secs_f64());
+                format!(
+                    "pieces {} -> visible pieces {} ({:.3} per polygon), replaced {}, overlap tests {}, exact fallbacks {}",
+                    cs.inserted,
+                    visible.pieces.len(),
+                    visible.pieces.len() as f64 / prepared.screen.polys.len().max(1) as f64,
+                    cs.replaced,
+                    cs.overlap_tests,
+                    sightline::exact::predicates::fallback_count() - fallbacks_before
+                )
+            }
+            BenchMethod::BspTree => {
                 let mut bsp = sightline::visibility::bsp::Bsp::build(&prepared.screen);
-                let visible = bsp.visible_set();
+                let visible = bsp.visible_set(&prepared.screen);
                 method_times.push(t.elapsed().as_secs_f64());
                 let st = &bsp.stats;
                 format!(
@@ -636,6 +652,7 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
     let name = match a.method {
         BenchMethod::Zbuffer => "z-buffer",
         BenchMethod::Bsp => "bsp",
+        BenchMethod::BspTree => "bsp-tree",
     };
     println!(
         "  project + cull   {:9.4} s  {:12.0} triangles/s",

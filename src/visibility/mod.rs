@@ -14,6 +14,7 @@
 //! `Samples::row_of` compute their products and sums without rounding.
 
 pub mod bsp;
+pub mod coverage;
 pub mod painter;
 
 pub use bsp::BspMethod;
