@@ -280,3 +280,56 @@ fn adversarial_inputs_reach_the_exact_path() {
     );
     assert_ne!(meet_side([&p0, &p1, &p2], &q1), Some(Ordering::Equal));
 }
+
+/// The pieces' shortcuts (grid corners, face edges, lines through a vertex, cuts by planes the
+/// vertex lies on, the meeting point of three cut planes, grid crossings of face edges) settle
+/// most exact zeros without a determinant. Each must agree with the big-rational reference at
+/// every vertex of every visible piece of tangled scenes, where such zeros abound: shared mesh
+/// vertices and edges, and three faces cut pairwise meeting in one point.
+#[test]
+fn piece_sign_shortcuts_agree_with_the_reference() {
+    use sightline::camera::{Camera, NamedView};
+    use sightline::pipeline::prepare;
+    use sightline::project::CullMode;
+    use sightline::scene::primitives::{interlocked_tori, random_triangle_soup};
+    use sightline::visibility::bsp::visible_set;
+
+    let scenes = [random_triangle_soup(16, 7), interlocked_tori(10, 6)];
+    let mut zeros = 0;
+    for scene in &scenes {
+        let cam = Camera::fit(NamedView::Iso, scene.bounds().unwrap(), false, 40.0, 64, 64);
+        let screen = prepare(scene, &cam, CullMode::Off).screen;
+        let (visible, _) = visible_set(&screen);
+        let pieces = &visible.pieces;
+        // Every line and plane the visible pieces are made of, tried at every vertex.
+        let lines: Vec<Line> = pieces.iter().flat_map(|p| p.lines.clone()).collect();
+        let planes: Vec<Plane> = pieces.iter().map(|p| p.support).collect();
+        for (i, p) in pieces.iter().enumerate() {
+            let n = p.lines.len();
+            for k in 0..n {
+                let m = [&p.lines[(k + n - 1) % n], &p.lines[k]];
+                for l in lines.iter().skip(i % 29).step_by(29) {
+                    let want = line_reference(m, l).expect("adjacent lines cross");
+                    zeros += (want == Ordering::Equal) as usize;
+                    assert_eq!(
+                        p.vertex_line_sign(k, l),
+                        want,
+                        "piece {i} vertex {k}, {l:?}"
+                    );
+                }
+                for t in planes.iter().skip(i % 11).step_by(11) {
+                    let want = depth_reference(m, &p.support, t).expect("adjacent lines cross");
+                    zeros += (want == Ordering::Equal) as usize;
+                    assert_eq!(
+                        p.vertex_plane_sign(k, t),
+                        want,
+                        "piece {i} vertex {k}, {t:?}"
+                    );
+                }
+            }
+        }
+    }
+    // The scenes must reach the exact zeros the shortcuts exist for.
+    eprintln!("{zeros} exact zeros");
+    assert!(zeros > 1000, "only {zeros} exact zeros tried");
+}

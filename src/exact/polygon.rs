@@ -13,7 +13,7 @@
 //! Non-convex faces are cut into convex pieces first ([`convex_pieces`]): every later operation
 //! (BSP splitting, coverage) then needs only the convex split.
 
-use super::predicates::{Line, crossing_f64, depth_order_at, line_side};
+use super::predicates::{Line, crossing_f64, depth_order_at, line_side, meet_side};
 use super::{GridPoint, Plane};
 use std::cmp::Ordering;
 
@@ -109,12 +109,47 @@ impl Piece {
         [&self.lines[(k + n - 1) % n], &self.lines[k]]
     }
 
+    /// Is the point of the support plane above vertex k on plane `q`, by construction: `q` is
+    /// the support plane, or one of the vertex's lines is the cut of the support plane by `q`.
+    fn lifted_vertex_on(&self, k: usize, q: &Plane) -> bool {
+        *q == self.support
+            || self.vertex_lines(k).iter().any(|own| match own {
+                Line::Cut(x, y) => (*x == self.support && y == q) || (x == q && *y == self.support),
+                Line::Edge(_) => false,
+            })
+    }
+
+    /// The three planes whose meeting point projects to vertex k, when both its lines are cuts
+    /// sharing a plane: `Cut(X, Y)` and `Cut(X, Z)` (in any order) cross above X ∩ Y ∩ Z.
+    fn vertex_meet(&self, k: usize) -> Option<[Plane; 3]> {
+        let [Line::Cut(a0, a1), Line::Cut(b0, b1)] = self.vertex_lines(k) else {
+            return None;
+        };
+        let (x, y, z) = if a0 == b0 || a0 == b1 {
+            (a0, a1, if a0 == b0 { b1 } else { b0 })
+        } else if a1 == b0 || a1 == b1 {
+            (a1, a0, if a1 == b0 { b1 } else { b0 })
+        } else {
+            return None;
+        };
+        (y != z).then_some([*x, *y, *z])
+    }
+
     /// The sign of plane `q` at vertex k (lifted onto the support plane). `q.c > 0`.
     pub fn vertex_plane_sign(&self, k: usize, q: &Plane) -> Ordering {
         if let Some([x, y]) = self.corners[k]
             && let Some(s) = grid_vertex_plane_sign(&self.support, x, y, q)
         {
             return s;
+        }
+        // Splits by one plane meet exactly on it, and a vertex above the meeting point of the
+        // support plane and q with a third plane is on q: no arithmetic needed.
+        if self.lifted_vertex_on(k, q)
+            || self
+                .vertex_meet(k)
+                .is_some_and(|m| m.contains(&self.support) && m.contains(q))
+        {
+            return Ordering::Equal;
         }
         // On a face edge whose two ends have the same sign, every point has it: this settles
         // the exact zeros of shared edges without any determinant.
@@ -143,47 +178,49 @@ impl Piece {
         if a == l || b == l || *a == negate(l) || *b == negate(l) {
             return Ordering::Equal;
         }
-        // A vertex on a cut of the support plane by Q is on Q. There, a cut line of another
-        // plane T by the same Q, c_Q·T - c_T·Q, has the sign of T: a plane test that the
-        // face-edge shortcuts usually settle (splits of neighbouring faces by one plane meet
-        // exactly on their shared edge).
-        if let Line::Cut(p0, p1) = l {
-            // l = c_p1·p0 - c_p0·p1: where the vertex is on p1 it has the sign of p0 there;
-            // where it is on p0, the opposite sign of p1.
-            let on = |q: &Plane| {
-                *q == self.support
-                    || [a, b].iter().any(|own| match own {
-                        Line::Cut(x, y) => {
-                            (*x == self.support && y == q) || (x == q && *y == self.support)
-                        }
-                        Line::Edge(_) => false,
-                    })
-            };
-            if p0.c > 0 && p1.c > 0 {
-                if on(p1) {
-                    return self.vertex_plane_sign(k, p0);
-                }
-                if on(p0) {
-                    return self.vertex_plane_sign(k, p1).reverse();
+        // A cut line c_Q·P - c_P·Q has no z term: its sign at the vertex is its sign at any 3D
+        // point above it. At a point on Q it is the sign of P there (c_Q > 0), on P the opposite
+        // sign of Q, on both zero. Two such points are known by construction: the vertex lifted
+        // onto the support plane, and the meeting point of three planes when both lines of the
+        // vertex are cuts sharing a plane. These settle the exact zeros of concurrent cuts (three
+        // faces cut pairwise meet in one point) with a plane test or none.
+        if let Line::Cut(p0, p1) = l
+            && p0.c > 0
+            && p1.c > 0
+        {
+            match (self.lifted_vertex_on(k, p0), self.lifted_vertex_on(k, p1)) {
+                (true, true) => return Ordering::Equal,
+                (false, true) => return self.vertex_plane_sign(k, p0),
+                (true, false) => return self.vertex_plane_sign(k, p1).reverse(),
+                (false, false) => {}
+            }
+            if let Some(m) = self.vertex_meet(k) {
+                let side = |q: &Plane| {
+                    meet_side([&m[0], &m[1], &m[2]], q).expect("crossing cuts meet in a point")
+                };
+                match (m.contains(p0), m.contains(p1)) {
+                    (true, true) => return Ordering::Equal,
+                    (false, true) => return side(p0),
+                    (true, false) => return side(p1).reverse(),
+                    (false, false) => {}
                 }
             }
         }
-        if let Line::Edge(p) = l {
-            let at = |[x, y]: [i32; 2]| {
-                (p.a as i128 * x as i128 + p.b as i128 * y as i128 + p.d).cmp(&0)
-            };
-            if let Some(c) = self.corners[k] {
-                return at(c);
-            }
-            let n = self.len();
-            for [e0, e1] in [self.segments[(k + n - 1) % n], self.segments[k]]
-                .into_iter()
-                .flatten()
+        if let Some([x, y]) = self.corners[k]
+            && let Some(sign) = l.sign_at_grid(x, y)
+        {
+            return sign;
+        }
+        // On a face edge whose two ends have the same sign, every point has it.
+        let n = self.len();
+        for [[x0, y0], [x1, y1]] in [self.segments[(k + n - 1) % n], self.segments[k]]
+            .into_iter()
+            .flatten()
+        {
+            if let (Some(s0), Some(s1)) = (l.sign_at_grid(x0, y0), l.sign_at_grid(x1, y1))
+                && s0 == s1
             {
-                let a = at(e0);
-                if a == at(e1) {
-                    return a;
-                }
+                return s0;
             }
         }
         line_side(self.vertex_lines(k), l).expect("adjacent lines of a convex piece cross")
@@ -278,11 +315,13 @@ impl Piece {
         }
         // An end vertex of the run is not on `side`: it is an old vertex when it lies on the cut,
         // a new (implicit) one otherwise.
-        let end_corner = |v: usize| {
+        // A new vertex where two face edges cross may be a grid point (a mesh vertex): marking
+        // it keeps the exact zeros of edges concurrent there out of the determinants.
+        let end_corner = |v: usize, kept: usize| {
             if signs[v] == Ordering::Equal {
                 self.corners[v]
             } else {
-                None
+                grid_crossing(&closing, &self.lines[kept])
             }
         };
         let last = (run[run.len() - 1] + 1) % n;
@@ -294,9 +333,9 @@ impl Piece {
         // Vertex 0 joins the closing line and the first kept edge; vertex i joins kept edges
         // i-1 and i; the last joins the last kept edge and the closing line.
         let mut corners = Vec::with_capacity(lines.len());
-        corners.push(end_corner(start));
+        corners.push(end_corner(start, start));
         corners.extend(run[1..].iter().map(|&k| self.corners[k]));
-        corners.push(end_corner(last));
+        corners.push(end_corner(last, run[run.len() - 1]));
         Piece {
             poly: self.poly,
             support: self.support,
@@ -355,6 +394,25 @@ impl Piece {
     pub fn vertices_f64(&self) -> Vec<[f64; 2]> {
         (0..self.len()).map(|k| self.vertex_f64(k)).collect()
     }
+}
+
+/// Where two face-edge lines cross, when that is a grid point; exact in i128 (edge coefficients
+/// are below 2^26 and 2^55).
+fn grid_crossing(l: &Line, m: &Line) -> Option<[i32; 2]> {
+    let (Line::Edge(p), Line::Edge(q)) = (l, m) else {
+        return None;
+    };
+    let (a0, b0, a1, b1) = (p.a as i128, p.b as i128, q.a as i128, q.b as i128);
+    let den = a0.checked_mul(b1)?.checked_sub(a1.checked_mul(b0)?)?;
+    if den == 0 {
+        return None;
+    }
+    let nx = b0.checked_mul(q.d)?.checked_sub(b1.checked_mul(p.d)?)?;
+    let ny = a1.checked_mul(p.d)?.checked_sub(a0.checked_mul(q.d)?)?;
+    if nx % den != 0 || ny % den != 0 {
+        return None;
+    }
+    Some([i32::try_from(nx / den).ok()?, i32::try_from(ny / den).ok()?])
 }
 
 /// Do two convex pieces have disjoint interiors? Exact: some edge line of one has the other

@@ -82,6 +82,20 @@ impl Line {
         }
     }
 
+    /// The sign of the line at grid point (x, y), exactly in i128; `None` if an operation would
+    /// overflow (never for grid planes: |a·x + b·y + d| < 2^91, times c < 2^32).
+    pub fn sign_at_grid(&self, x: i32, y: i32) -> Option<Ordering> {
+        let (x, y) = (x as i128, y as i128);
+        let at = |p: &Plane| (p.a as i128 * x + p.b as i128 * y).checked_add(p.d);
+        let v = match self {
+            Line::Edge(p) => at(p)?,
+            Line::Cut(p, q) => (q.c as i128)
+                .checked_mul(at(p)?)?
+                .checked_sub((p.c as i128).checked_mul(at(q)?)?)?,
+        };
+        Some(v.cmp(&0))
+    }
+
     /// Exact coefficients (a, b, d).
     fn exact(&self) -> [I512; 3] {
         match self {
