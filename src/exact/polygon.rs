@@ -13,7 +13,10 @@
 //! Non-convex faces are cut into convex pieces first ([`convex_pieces`]): every later operation
 //! (BSP splitting, coverage) then needs only the convex split.
 
-use super::predicates::{Line, crossing_f64, depth_order_at, line_side, meet_side};
+use super::predicates::{
+    Line, crossing_f64, depth_order_at, depth_order_filtered, line_side, line_side_filtered,
+    meet_side,
+};
 use super::{GridPoint, Plane};
 use std::cmp::Ordering;
 
@@ -142,6 +145,10 @@ impl Piece {
         {
             return s;
         }
+        // Most signs are far from zero: the f64 filter settles them before any shortcut.
+        if let Some(s) = depth_order_filtered(self.vertex_lines(k), &self.support, q) {
+            return s;
+        }
         // Splits by one plane meet exactly on it, and a vertex above the meeting point of the
         // support plane and q with a third plane is on q: no arithmetic needed.
         if self.lifted_vertex_on(k, q)
@@ -173,8 +180,17 @@ impl Piece {
 
     /// The sign of line `l` at vertex k.
     pub fn vertex_line_sign(&self, k: usize, l: &Line) -> Ordering {
-        // A vertex lies on the lines that define it: no arithmetic needed.
+        if let Some([x, y]) = self.corners[k]
+            && let Some(sign) = l.sign_at_grid(x, y)
+        {
+            return sign;
+        }
+        // Most signs are far from zero: the f64 filter settles them before any shortcut.
         let [a, b] = self.vertex_lines(k);
+        if let Some(sign) = line_side_filtered([a, b], l) {
+            return sign;
+        }
+        // A vertex lies on the lines that define it: no arithmetic needed.
         if a == l || b == l || *a == negate(l) || *b == negate(l) {
             return Ordering::Equal;
         }
@@ -205,11 +221,6 @@ impl Piece {
                     (false, false) => {}
                 }
             }
-        }
-        if let Some([x, y]) = self.corners[k]
-            && let Some(sign) = l.sign_at_grid(x, y)
-        {
-            return sign;
         }
         // On a face edge whose two ends have the same sign, every point has it.
         let n = self.len();

@@ -327,6 +327,27 @@ pub fn line_side(m: [&Line; 2], l: &Line) -> Option<Ordering> {
     Some(combine_signs(det_sign, d_sign))
 }
 
+/// [`line_side`] by the f64 filter alone: `None` where the filter cannot decide (not counted as
+/// a fallback: the caller has other ways, and then calls [`line_side`]). Never `Equal`.
+pub fn line_side_filtered(m: [&Line; 2], l: &Line) -> Option<Ordering> {
+    let f = [m[0].filtered(), m[1].filtered(), l.filtered()];
+    let (a0, b0, a1, b1) = (f[0][0], f[0][1], f[1][0], f[1][1]);
+    let d = a0.value * b1.value - a1.value * b0.value;
+    let d_perm = a0.magnitude * b1.magnitude + a1.magnitude * b0.magnitude;
+    let d_sign = filtered_sign(d, d_perm)?;
+    let (det, perm) = det3_f64(f);
+    Some(combine_signs(filtered_sign(det, perm)?, d_sign))
+}
+
+/// [`depth_order_at`] by the f64 filter alone, as [`line_side_filtered`].
+pub fn depth_order_filtered(m: [&Line; 2], s: &Plane, t: &Plane) -> Option<Ordering> {
+    let rows = [plane_filtered(s), m[0].filtered_row(), m[1].filtered_row()];
+    let (d, d_perm) = det3_f64(rows.map(|r| [r[0], r[1], r[2]]));
+    let d_sign = filtered_sign(d, d_perm)?;
+    let (det, perm) = det4_f64([rows[0], rows[1], rows[2], plane_filtered(t)]);
+    Some(combine_signs(filtered_sign(det, perm)?, d_sign))
+}
+
 /// At the screen point where lines `m0` and `m1` cross, is the support plane `s` nearer than `t`
 /// (`Less`), at the same depth (`Equal`) or farther (`Greater`)? Both planes must have `c > 0`
 /// (support planes). `None` when the lines are parallel.

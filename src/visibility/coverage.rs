@@ -185,50 +185,50 @@ impl<'a> Coverage<'a> {
         let mut queue = self.near(&b);
         // Each part with its bounds, computed once: they cost crossings.
         let mut parts = vec![(piece, b)];
-        let mut next_in_queue = 0;
         let mut resolved = Vec::new();
+        let mut done = Vec::new();
+        let mut next_in_queue = 0;
         while next_in_queue < queue.len() {
             let v = queue[next_in_queue] as usize;
             next_in_queue += 1;
-            let Some(front) = self.visible[v].take() else {
+            let Some(front) = self.visible[v].as_ref() else {
                 continue;
             };
             let vb = self.bounds[v];
-            let mut kept = Vec::with_capacity(parts.len());
             let mut replacement: Option<Vec<Piece>> = None;
-            let mut rest = parts.into_iter();
-            for (part, pb) in rest.by_ref() {
-                if !overlap(&pb, &vb) {
-                    kept.push((part, pb));
+            // Parts that `front` leaves alone stay in place; resolved ones wait in `done`, since
+            // they are settled against `front`.
+            let mut i = 0;
+            while i < parts.len() {
+                if !overlap(&parts[i].1, &vb) {
+                    i += 1;
                     continue;
                 }
                 self.stats.overlap_tests += 1;
-                if separated(&part, &front) {
-                    kept.push((part, pb));
+                if separated(&parts[i].0, front) {
+                    i += 1;
                     continue;
                 }
-                let front_keeps = self.resolve(part, &front, &mut resolved);
-                kept.extend(resolved.drain(..).map(|p| {
+                let (part, _) = parts.swap_remove(i);
+                let front_keeps = self.resolve(part, front, &mut resolved);
+                done.extend(resolved.drain(..).map(|p| {
                     let b = bounds(&p);
                     (p, b)
                 }));
-                if let Some(front_keeps) = front_keeps {
+                if front_keeps.is_some() {
                     // The visible piece changed: the parts not yet compared meet what it
                     // keeps through the queue.
-                    replacement = Some(front_keeps);
+                    replacement = front_keeps;
                     break;
                 }
             }
-            kept.extend(rest);
-            parts = kept;
-            match replacement {
-                None => self.visible[v] = Some(front),
-                Some(front_keeps) => {
-                    self.stats.replaced += 1;
-                    for p in front_keeps {
-                        let b = bounds(&p);
-                        queue.push(self.add(p, b));
-                    }
+            parts.append(&mut done);
+            if let Some(front_keeps) = replacement {
+                self.visible[v] = None;
+                self.stats.replaced += 1;
+                for p in front_keeps {
+                    let b = bounds(&p);
+                    queue.push(self.add(p, b));
                 }
             }
             if parts.is_empty() {
