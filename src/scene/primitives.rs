@@ -401,6 +401,21 @@ pub fn interlocked_tori(segments: usize, sides: usize) -> Scene {
     b.finish().expect("two tori have faces")
 }
 
+/// Two closed tori whose surfaces cut through each other: the second is the first turned a
+/// quarter about the x axis and shifted by half a tube radius, so every ring crosses the other
+/// tube. Each a mesh of its own; the visible set must follow the curves where they meet.
+pub fn interpenetrating_tori(segments: usize, sides: usize) -> Scene {
+    let mut b = SceneBuilder::new("interpenetrating_tori");
+    let m = b.default_material();
+    b.begin_mesh("torus a");
+    torus(&mut b, &DMat4::IDENTITY, 1.0, 0.3, segments, sides, m);
+    b.begin_mesh("torus b");
+    let t = DMat4::from_translation(DVec3::new(0.15, 0.0, 0.0))
+        * DMat4::from_rotation_x(std::f64::consts::FRAC_PI_2);
+    torus(&mut b, &t, 1.0, 0.3, segments, sides, m);
+    b.finish().expect("two tori have faces")
+}
+
 /// `count` independent triangles whose corners are uniform in the unit cube [0,1)³, from a
 /// deterministic generator seeded by `seed`. One mesh with a two-sided material (a soup has no
 /// inside, so no face is back-face culled). Degenerate triangles (vanishingly rare) are dropped

@@ -1,0 +1,127 @@
+//! The exact visible set (`render --method bsp` on an opaque scene: projection, culling and the
+//! depth-aware coverage map) at 1024x1024 on generated spheres of 1k, 10k, 100k and 1M
+//! triangles, interlocked and interpenetrating tori, random triangle soups of 100 and 1,000, and
+//! the meshes of `../shared/meshes` with their cameras when that directory is present. Before
+//! each benchmark one line on stderr gives its visible pieces per polygon and exact fallbacks.
+//! The 10,000-triangle soup takes minutes a run: time it with
+//! `sightline bench --soup 10000 --method bsp --repeat 1`.
+//!
+//! `cargo bench --bench bsp`; `cargo bench --bench bsp -- soup` for the soups only.
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use sightline::camera::{CamFile, Camera, NamedView};
+use sightline::exact::predicates::fallback_count;
+use sightline::pipeline::prepare;
+use sightline::project::CullMode;
+use sightline::scene::Scene;
+use sightline::scene::primitives::{
+    interlocked_tori, interpenetrating_tori, random_triangle_soup, sphere_scene,
+};
+use sightline::visibility::bsp::visible_set;
+use std::hint::black_box;
+use std::path::Path;
+use std::time::Duration;
+
+/// Projection, culling and the exact visible set: what `render --method bsp` computes before
+/// drawing. Returns the visible piece count.
+fn run(scene: &Scene, cam: &Camera) -> usize {
+    let prepared = prepare(scene, cam, CullMode::Auto);
+    visible_set(&prepared.screen).0.pieces.len()
+}
+
+/// One untimed run, reported: what the timed runs do.
+fn report(name: &str, scene: &Scene, cam: &Camera) {
+    let before = fallback_count();
+    let prepared = prepare(scene, cam, CullMode::Auto);
+    let (visible, stats) = visible_set(&prepared.screen);
+    let polys = prepared.screen.polys.len();
+    eprintln!(
+        "{name}: {} faces, {polys} on screen, {} visible pieces ({:.3} per polygon), {} replaced, \
+         {} exact fallbacks",
+        scene.faces.len(),
+        visible.pieces.len(),
+        visible.pieces.len() as f64 / polys.max(1) as f64,
+        stats.replaced,
+        fallback_count() - before
+    );
+}
+
+fn bench(c: &mut Criterion, group: &str, cases: Vec<(String, Scene)>, seconds: u64) {
+    let mut g = c.benchmark_group(group);
+    g.sample_size(10)
+        .measurement_time(Duration::from_secs(seconds));
+    for (name, scene) in cases {
+        let cam = Camera::fit(
+            NamedView::Iso,
+            scene.bounds().unwrap(),
+            false,
+            40.0,
+            1024,
+            1024,
+        );
+        report(&format!("{group}/{name}"), &scene, &cam);
+        g.throughput(Throughput::Elements(scene.faces.len() as u64));
+        g.bench_function(name, |b| b.iter(|| black_box(run(&scene, &cam))));
+    }
+    g.finish();
+}
+
+fn spheres(c: &mut Criterion) {
+    let cases = [1_000usize, 10_000, 100_000, 1_000_000]
+        .into_iter()
+        .map(|n| (n.to_string(), sphere_scene(n)))
+        .collect();
+    bench(c, "sphere", cases, 10);
+}
+
+fn tori(c: &mut Criterion) {
+    let cases = vec![
+        ("interlocked/200".to_string(), interlocked_tori(200, 100)),
+        ("interpenetrating/200".to_string(), interpenetrating_tori(200, 100)),
+    ];
+    bench(c, "tori", cases, 8);
+}
+
+fn soups(c: &mut Criterion) {
+    let cases = [100usize, 1_000]
+        .into_iter()
+        .map(|n| (n.to_string(), random_triangle_soup(n, 1)))
+        .collect();
+    bench(c, "soup", cases, 20);
+}
+
+fn shared_meshes(c: &mut Criterion) {
+    let dir = Path::new("../shared/meshes");
+    if !dir.is_dir() {
+        eprintln!("../shared/meshes is not present: skipping the real-mesh benchmarks");
+        return;
+    }
+    let mut g = c.benchmark_group("mesh");
+    g.sample_size(10).measurement_time(Duration::from_secs(5));
+    let mut names: Vec<_> = std::fs::read_dir(dir.join("cams"))
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .collect();
+    names.sort();
+    for cam_path in names {
+        let stem = cam_path.file_stem().unwrap().to_string_lossy().to_string();
+        let mesh = [
+            dir.join(format!("{stem}.obj")),
+            dir.join(format!("{stem}.obj.gz")),
+        ]
+        .into_iter()
+        .find(|p| p.exists());
+        let Some(mesh) = mesh else { continue };
+        let text = std::fs::read_to_string(&cam_path).unwrap();
+        let cam = CamFile::parse(&text, &stem).unwrap().camera(false);
+        let scene = sightline::load(&mesh, None).unwrap();
+        report(&format!("mesh/{stem}"), &scene, &cam);
+        g.throughput(Throughput::Elements(scene.faces.len() as u64));
+        g.bench_function(stem, |b| b.iter(|| black_box(run(&scene, &cam))));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, spheres, tori, soups, shared_meshes);
+criterion_main!(benches);
