@@ -2,6 +2,7 @@
 //! (A-buffer, scanline, Warnock) join it here.
 
 pub mod sample;
+pub mod scanline;
 pub mod shade;
 pub mod zbuffer;
 
