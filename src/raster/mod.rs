@@ -4,6 +4,7 @@
 pub mod sample;
 pub mod scanline;
 pub mod shade;
+pub mod warnock;
 pub mod zbuffer;
 
 pub use zbuffer::{EMPTY, ZBuffer, ZBufferStats};
