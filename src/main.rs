@@ -1,5 +1,27 @@
 //! The `sightline` command line: parses flags and calls the library.
 
+/// `print!` that ends the process quietly when standard output is closed early (`sightline info
+/// X | head`), as Unix tools do, instead of panicking; any other write error is reported.
+macro_rules! print {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        if let Err(e) = write!(std::io::stdout().lock(), $($arg)*) {
+            if e.kind() == std::io::ErrorKind::BrokenPipe {
+                std::process::exit(0);
+            }
+            eprintln!("error: writing to standard output: {e}");
+            std::process::exit(1);
+        }
+    }};
+}
+
+/// `println!` through [`print!`].
+macro_rules! println {
+    ($($arg:tt)*) => {{
+        print!("{}\n", format_args!($($arg)*))
+    }};
+}
+
 use clap::{Args, Parser, Subcommand};
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -104,7 +126,14 @@ struct CameraArgs {
 enum Method {
     /// Z-buffer with exact coverage and depth at pixel centres (the reference). PNG only.
     Zbuffer,
-    /// Exact visible polygons: 3D BSP with splitting, then a coverage pass (object space).
+    /// A-buffer: per-pixel fragment lists, translucent faces blended back to front. PNG only.
+    Abuffer,
+    /// Watkins scanline: edge tables, active edges, spans. PNG only.
+    Scanline,
+    /// Warnock area subdivision down to a pixel. PNG only.
+    Warnock,
+    /// Exact visible polygons (object space): depth-aware coverage map; a 3D BSP for the painter
+    /// order of translucent faces.
     Bsp,
     /// APPROXIMATE baseline: whole faces sorted by farthest depth, no splitting (as matplotlib's
     /// mplot3d and GL2PS's simple sort do). Wrong on cyclic overlap and interpenetration.
@@ -115,9 +144,97 @@ impl Method {
     fn name(self) -> &'static str {
         match self {
             Method::Zbuffer => "zbuffer",
+            Method::Abuffer => "abuffer",
+            Method::Scanline => "scanline",
+            Method::Warnock => "warnock",
             Method::Bsp => "bsp",
             Method::Painter => "painter",
         }
+    }
+
+    /// Does it draw pixels (rather than polygons)?
+    fn is_raster(self) -> bool {
+        matches!(
+            self,
+            Method::Zbuffer | Method::Abuffer | Method::Scanline | Method::Warnock
+        )
+    }
+}
+
+/// What an image-space method produced: per pixel the winning screen polygon (or `EMPTY`), the
+/// A-buffer's blended colours when it shaded, and its counters for `--stats`.
+struct RasterResult {
+    poly: Vec<u32>,
+    /// The z-buffer's normalized depths, when asked for.
+    depth: Option<Vec<f64>>,
+    blended: Option<Vec<[f64; 3]>>,
+    detail: String,
+}
+
+/// Runs an image-space method on a prepared scene.
+fn run_raster(
+    method: Method,
+    scene: &Scene,
+    prepared: &pipeline::Prepared,
+    camera: &Camera,
+    fill: Fill,
+    background: [u8; 3],
+    want_depth: bool,
+) -> RasterResult {
+    use sightline::raster::{abuffer, scanline, warnock, zbuffer};
+    let screen = &prepared.screen;
+    match method {
+        Method::Zbuffer => {
+            let bar = progress_bar(screen.polys.len() as u64, "rendering");
+            let zb = zbuffer::render(screen, |n| bar.set_position(n as u64));
+            bar.finish_and_clear();
+            let detail = format!(
+                "fragments {}, exact fallbacks: edge {} depth {}, depth ties {}",
+                zb.stats.fragments,
+                zb.stats.column_fallbacks,
+                zb.stats.depth_fallbacks,
+                zb.stats.depth_ties
+            );
+            RasterResult {
+                depth: want_depth.then(|| zb.normalized_depth(screen)),
+                poly: zb.poly,
+                blended: None,
+                detail,
+            }
+        }
+        Method::Abuffer => {
+            let paints = abuffer::paints(scene, screen, camera, fill);
+            let bg = match fill {
+                Fill::Id => [0.0; 3],
+                Fill::Shade => background.map(|c| c as f64 / 255.0),
+            };
+            let ab = abuffer::render(screen, &paints, bg, abuffer::Options::default());
+            RasterResult {
+                depth: None,
+                detail: format!("{:?}", ab.stats),
+                blended: (fill == Fill::Shade).then_some(ab.color),
+                poly: ab.poly,
+            }
+        }
+        Method::Scanline => {
+            let r = scanline::render(screen);
+            RasterResult {
+                depth: None,
+                detail: format!("{:?}", r.stats),
+                poly: r.poly,
+                blended: None,
+            }
+        }
+        Method::Warnock => {
+            let r = warnock::render(screen);
+            RasterResult {
+                depth: None,
+                detail: format!("{:?}", r.stats),
+                poly: r.poly,
+                blended: None,
+            }
+        }
+        Method::Bsp | Method::Painter => unreachable!("object-space methods draw polygons"),
     }
 }
 
@@ -173,7 +290,7 @@ struct CompareArgs {
     /// The method to check.
     #[arg(long, value_enum, default_value_t = Method::Bsp)]
     method: Method,
-    /// The reference (the z-buffer; the other image-space methods join later).
+    /// The method to check it against (interior pixels: see `compare --help`).
     #[arg(long, value_enum, default_value_t = Method::Zbuffer)]
     against: Method,
 }
@@ -360,9 +477,9 @@ fn output_format(a: &RenderArgs) -> sightline::Result<OutputFormat> {
         Some("png") => OutputFormat::Png,
         Some("svg") => OutputFormat::Svg,
         Some("json") => OutputFormat::Json,
-        _ if a.output.as_os_str() == "-" => match a.method {
-            Method::Zbuffer => OutputFormat::Png,
-            _ => OutputFormat::Svg,
+        _ if a.output.as_os_str() == "-" => match a.method.is_raster() {
+            true => OutputFormat::Png,
+            false => OutputFormat::Svg,
         },
         _ => {
             return Err(sightline::Error::Output(format!(
@@ -388,10 +505,11 @@ fn run_method(
 
 fn render(a: RenderArgs) -> sightline::Result<()> {
     let format = output_format(&a)?;
-    if a.method == Method::Zbuffer && format != OutputFormat::Png {
-        return Err(sightline::Error::Output(
-            "the z-buffer draws pixels: write it as PNG (use --method bsp for SVG or JSON)".into(),
-        ));
+    if a.method.is_raster() && format != OutputFormat::Png {
+        return Err(sightline::Error::Output(format!(
+            "--method {} draws pixels: write it as PNG (use --method bsp for SVG or JSON)",
+            a.method.name()
+        )));
     }
     if a.depth.is_some() && a.method != Method::Zbuffer {
         return Err(sightline::Error::Output(
@@ -407,26 +525,38 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
     let t_project = t1.elapsed();
     let bg = a.background.map(|c| c as f64 / 255.0);
     let t2 = Instant::now();
-    let (bytes, detail) = if a.method == Method::Zbuffer {
-        let bar = progress_bar(prepared.screen.polys.len() as u64, "rendering");
-        let zb =
-            sightline::raster::zbuffer::render(&prepared.screen, |n| bar.set_position(n as u64));
-        bar.finish_and_clear();
-        let image =
-            pipeline::colorize(&scene, &prepared.screen, &zb, &camera, a.fill, a.background);
-        if let Some(depth_path) = &a.depth {
-            let depth = zb.normalized_depth(&prepared.screen);
-            let d = png::encode_depth16(camera.width, camera.height, &depth)?;
+    let (bytes, detail) = if a.method.is_raster() {
+        let r = run_raster(
+            a.method,
+            &scene,
+            &prepared,
+            &camera,
+            a.fill,
+            a.background,
+            a.depth.is_some(),
+        );
+        let image = match r.blended {
+            Some(colors) => colors
+                .into_iter()
+                .map(sightline::raster::shade::to_u8)
+                .collect(),
+            None => pipeline::colorize_polys(
+                &scene,
+                &prepared.screen,
+                &r.poly,
+                &camera,
+                a.fill,
+                a.background,
+            ),
+        };
+        if let (Some(depth_path), Some(depth)) = (&a.depth, &r.depth) {
+            let d = png::encode_depth16(camera.width, camera.height, depth)?;
             write_atomic(depth_path, &d)?;
         }
-        let detail = format!(
-            "fragments {}, exact fallbacks: edge {} depth {}, depth ties {}",
-            zb.stats.fragments,
-            zb.stats.column_fallbacks,
-            zb.stats.depth_fallbacks,
-            zb.stats.depth_ties
-        );
-        (png::encode_rgb(camera.width, camera.height, image)?, detail)
+        (
+            png::encode_rgb(camera.width, camera.height, image)?,
+            r.detail,
+        )
     } else {
         let mut result = run_method(a.method, &scene, &prepared, &camera, a.fill);
         if result.drawing.background.is_none() {
@@ -482,28 +612,34 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
     Ok(())
 }
 
+/// A method's face id at every pixel centre, and its time after projection.
+fn face_ids_of(
+    method: Method,
+    scene: &Scene,
+    prepared: &pipeline::Prepared,
+    camera: &Camera,
+) -> (Vec<Option<u32>>, f64) {
+    let t = Instant::now();
+    let ids = if method.is_raster() {
+        let r = run_raster(method, scene, prepared, camera, Fill::Id, [0; 3], false);
+        let polys = &prepared.screen.polys;
+        r.poly
+            .iter()
+            .map(|&p| (p != sightline::raster::EMPTY).then(|| polys[p as usize].id))
+            .collect()
+    } else {
+        let result = run_method(method, scene, prepared, camera, Fill::Id);
+        sightline::output::raster_drawing::face_ids(&result.drawing)
+    };
+    (ids, t.elapsed().as_secs_f64())
+}
+
 fn compare(a: CompareArgs) -> sightline::Result<()> {
-    if a.against != Method::Zbuffer {
-        return Err(sightline::Error::Output(
-            "--against: only the z-buffer is a reference so far".into(),
-        ));
-    }
     let scene = load_scene(&a.input)?;
     let camera = camera_for(&a.camera, &scene)?;
     let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
-    let t = Instant::now();
-    let zb = sightline::raster::zbuffer::render(&prepared.screen, |_| {});
-    let t_ref = t.elapsed().as_secs_f64();
-    let reference = zb.face_ids(&prepared.screen);
-    let t = Instant::now();
-    let ids = match a.method {
-        Method::Zbuffer => reference.clone(),
-        m => {
-            let result = run_method(m, &scene, &prepared, &camera, Fill::Id);
-            sightline::output::raster_drawing::face_ids(&result.drawing)
-        }
-    };
-    let t_method = t.elapsed().as_secs_f64();
+    let (reference, t_ref) = face_ids_of(a.against, &scene, &prepared, &camera);
+    let (ids, t_method) = face_ids_of(a.method, &scene, &prepared, &camera);
     let c = pipeline::compare_ids(
         &reference,
         &ids,

@@ -52,6 +52,18 @@ pub fn colorize(
     fill: Fill,
     background: [u8; 3],
 ) -> Vec<[u8; 3]> {
+    colorize_polys(scene, screen, &zb.poly, camera, fill, background)
+}
+
+/// The image of any per-pixel polygon index (`EMPTY` for background), as [`colorize`].
+pub fn colorize_polys(
+    scene: &Scene,
+    screen: &ScreenScene,
+    poly: &[u32],
+    camera: &Camera,
+    fill: Fill,
+    background: [u8; 3],
+) -> Vec<[u8; 3]> {
     // One colour per screen polygon, computed once.
     let colors: Vec<[u8; 3]> = screen
         .polys
@@ -65,8 +77,7 @@ pub fn colorize(
         Fill::Id => [0, 0, 0],
         Fill::Shade => background,
     };
-    zb.poly
-        .iter()
+    poly.iter()
         .map(|&p| {
             if p == EMPTY {
                 background

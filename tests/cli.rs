@@ -343,3 +343,107 @@ fn render_bsp_writes_svg_and_json() {
     let o = sightline(&["render", "fixtures/cube.obj", "-o", "x.svg"]);
     assert_eq!(o.status.code(), Some(1), "the z-buffer cannot write SVG");
 }
+
+/// Every pair of image-space methods agrees at every covered pixel of the tangled fixtures, both
+/// ways round (`--against` takes any method), and the painter differs from each of them.
+#[test]
+fn compare_takes_any_two_methods() {
+    let covered_mismatch = |file: &str, method: &str, against: &str| -> usize {
+        let args = [
+            "compare",
+            file,
+            "--method",
+            method,
+            "--against",
+            against,
+            "--size",
+            "96x72",
+            "--view",
+            "front",
+        ];
+        let o = sightline(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = String::from_utf8_lossy(&o.stdout).to_string();
+        assert!(
+            text.starts_with(&format!("{method} vs {against}")),
+            "{text}"
+        );
+        let line = text
+            .lines()
+            .find(|l| l.trim_start().starts_with("covered pixels"))
+            .unwrap();
+        let words: Vec<&str> = line.split_whitespace().collect();
+        let at = words.iter().position(|w| *w == "mismatched").unwrap();
+        words[at + 1].parse().unwrap()
+    };
+    for f in ["fixtures/cyclic_bars.obj", "fixtures/interpenetrating.obj"] {
+        for (m, a) in [
+            ("scanline", "zbuffer"),
+            ("warnock", "scanline"),
+            ("abuffer", "warnock"),
+            ("zbuffer", "abuffer"),
+        ] {
+            assert_eq!(covered_mismatch(f, m, a), 0, "{f}: {m} vs {a}");
+        }
+        assert!(covered_mismatch(f, "painter", "warnock") > 0, "{f}");
+    }
+}
+
+/// The image-space methods draw PNGs only, and say so.
+#[test]
+fn image_space_methods_render_png_and_refuse_svg() {
+    let dir = tempfile::tempdir().unwrap();
+    for m in ["abuffer", "scanline", "warnock"] {
+        let png = dir.path().join(format!("{m}.png"));
+        let o = sightline(&[
+            "render",
+            "fixtures/seed_transparent.x3d",
+            "--method",
+            m,
+            "-o",
+            png.to_str().unwrap(),
+        ]);
+        assert!(
+            o.status.success(),
+            "{m}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+        let svg = dir.path().join(format!("{m}.svg"));
+        let o = sightline(&[
+            "render",
+            "fixtures/cube.obj",
+            "--method",
+            m,
+            "-o",
+            svg.to_str().unwrap(),
+        ]);
+        assert!(!o.status.success());
+        assert!(String::from_utf8_lossy(&o.stderr).contains("write it as PNG"));
+        assert!(!svg.exists(), "no output file on error");
+    }
+}
+
+/// A reader that stops early (`| head -1`) ends the run quietly, not with a panic.
+#[test]
+fn closed_standard_output_is_not_a_panic() {
+    use std::io::Read;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sightline"))
+        .args(["info", "fixtures/cube.obj"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Close our end of standard output before it writes.
+    drop(child.stdout.take());
+    let status = child.wait().unwrap();
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(status.success(), "{status:?}: {err}");
+}
