@@ -8,8 +8,10 @@
 //!
 //! `cargo bench --bench bsp`; `cargo bench --bench bsp -- soup` for the soups only.
 
+mod common;
+
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use sightline::camera::{CamFile, Camera, NamedView};
+use sightline::camera::{Camera, NamedView};
 use sightline::exact::predicates::fallback_count;
 use sightline::pipeline::prepare;
 use sightline::project::CullMode;
@@ -19,7 +21,6 @@ use sightline::scene::primitives::{
 };
 use sightline::visibility::bsp::visible_set;
 use std::hint::black_box;
-use std::path::Path;
 use std::time::Duration;
 
 /// Projection, culling and the exact visible set: what `render --method bsp` computes before
@@ -94,31 +95,13 @@ fn soups(c: &mut Criterion) {
 }
 
 fn shared_meshes(c: &mut Criterion) {
-    let dir = Path::new("../shared/meshes");
-    if !dir.is_dir() {
-        eprintln!("../shared/meshes is not present: skipping the real-mesh benchmarks");
+    let meshes = common::shared_meshes();
+    if meshes.is_empty() {
         return;
     }
     let mut g = c.benchmark_group("mesh");
     g.sample_size(10).measurement_time(Duration::from_secs(5));
-    let mut names: Vec<_> = std::fs::read_dir(dir.join("cams"))
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .map(|e| e.path())
-        .collect();
-    names.sort();
-    for cam_path in names {
-        let stem = cam_path.file_stem().unwrap().to_string_lossy().to_string();
-        let mesh = [
-            dir.join(format!("{stem}.obj")),
-            dir.join(format!("{stem}.obj.gz")),
-        ]
-        .into_iter()
-        .find(|p| p.exists());
-        let Some(mesh) = mesh else { continue };
-        let text = std::fs::read_to_string(&cam_path).unwrap();
-        let cam = CamFile::parse(&text, &stem).unwrap().camera(false);
-        let scene = sightline::load(&mesh, None).unwrap();
+    for (stem, scene, cam) in meshes {
         report(&format!("mesh/{stem}"), &scene, &cam);
         g.throughput(Throughput::Elements(scene.faces.len() as u64));
         g.bench_function(stem, |b| b.iter(|| black_box(run(&scene, &cam))));

@@ -4,13 +4,14 @@
 //!
 //! `cargo bench --bench zbuffer`; `cargo bench --bench zbuffer -- sphere` for the spheres only.
 
+mod common;
+
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use sightline::camera::{CamFile, Camera, NamedView};
+use sightline::camera::{Camera, NamedView};
 use sightline::pipeline::render_zbuffer;
 use sightline::project::CullMode;
 use sightline::scene::{Format, Scene, load_bytes, primitives::sphere_scene};
 use std::hint::black_box;
-use std::path::Path;
 use std::time::Duration;
 
 fn to_obj(scene: &Scene) -> Vec<u8> {
@@ -62,31 +63,13 @@ fn spheres(c: &mut Criterion) {
 }
 
 fn shared_meshes(c: &mut Criterion) {
-    let dir = Path::new("../shared/meshes");
-    if !dir.is_dir() {
-        eprintln!("../shared/meshes is not present: skipping the real-mesh benchmarks");
+    let meshes = common::shared_meshes();
+    if meshes.is_empty() {
         return;
     }
     let mut g = c.benchmark_group("mesh");
     g.sample_size(10).measurement_time(Duration::from_secs(4));
-    let mut names: Vec<_> = std::fs::read_dir(dir.join("cams"))
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .map(|e| e.path())
-        .collect();
-    names.sort();
-    for cam_path in names {
-        let stem = cam_path.file_stem().unwrap().to_string_lossy().to_string();
-        let mesh = [
-            dir.join(format!("{stem}.obj")),
-            dir.join(format!("{stem}.obj.gz")),
-        ]
-        .into_iter()
-        .find(|p| p.exists());
-        let Some(mesh) = mesh else { continue };
-        let text = std::fs::read_to_string(&cam_path).unwrap();
-        let cam = CamFile::parse(&text, &stem).unwrap().camera(false);
-        let scene = sightline::load(&mesh, None).unwrap();
+    for (stem, scene, cam) in meshes {
         g.throughput(Throughput::Elements(scene.faces.len() as u64));
         g.bench_function(format!("zbuffer/{stem}"), |b| {
             b.iter(|| {

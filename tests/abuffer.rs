@@ -351,7 +351,7 @@ proptest! {
         let cam = cam.unwrap();
         let screen = prepare(&scene, &cam, CullMode::Auto).screen;
         let mut shuffled = screen.clone();
-        let mut dice = raster_scenes::Dice(shuffle);
+        let mut dice = Rng(shuffle);
         for k in (1..shuffled.polys.len()).rev() {
             let m = dice.below(k as u64 + 1) as usize;
             shuffled.polys.swap(k, m);

@@ -6,6 +6,8 @@ use glam::DVec3;
 use sightline::camera::{Camera, CameraSpec, NamedView, Projection};
 use sightline::scene::{Material, Scene, SceneBuilder};
 use std::path::{Path, PathBuf};
+// The test files that use these scenes include `support` too.
+use super::support::Rng;
 
 /// Every loadable fixture (`fixtures/`, not `fixtures/bad`), by path, in name order.
 pub fn fixture_paths() -> Vec<PathBuf> {
@@ -72,26 +74,6 @@ pub fn lattice_point(i: i64, j: i64, z: f64) -> DVec3 {
     )
 }
 
-/// A tiny deterministic RNG (splitmix64), apart from `support::Rng` so both can be glob-imported.
-pub struct Dice(pub u64);
-
-impl Dice {
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e3779b97f4a7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58476d1ce4e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d049bb133111eb);
-        z ^ (z >> 31)
-    }
-    pub fn below(&mut self, n: u64) -> u64 {
-        self.next_u64() % n
-    }
-    /// Uniform in [lo, hi).
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// `n` faces (or so), mostly triangles, made to hit a pixel-exact renderer's hard cases, each in
 /// a mesh of its own (open: never culled) with a material of its own:
 /// - corners from a small shared pool, half of them on pixel centres of [`lattice_camera`] at
@@ -106,7 +88,7 @@ impl Dice {
 /// With `translucent`, materials get transparencies among 0, 0.25, 0.5, 0.75 and 1; colours are
 /// emissive multiples of 1/4 (diffuse 0), so shading leaves them exact.
 pub fn tricky_faces(seed: u64, n: usize, translucent: bool) -> Scene {
-    let mut rng = Dice(seed);
+    let mut rng = Rng(seed);
     let mut b = SceneBuilder::new("tricky");
     let levels = [-0.5, 0.0, 0.5];
     let pool_size = 6 + rng.below(10) as usize;
@@ -128,7 +110,7 @@ pub fn tricky_faces(seed: u64, n: usize, translucent: bool) -> Scene {
         pool.push(b.add_vertex(p));
     }
     let mut tris: Vec<Vec<u32>> = Vec::new();
-    let pick = |rng: &mut Dice| pool[rng.below(pool.len() as u64) as usize];
+    let pick = |rng: &mut Rng| pool[rng.below(pool.len() as u64) as usize];
     while tris.len() < n {
         let kind = rng.below(12);
         match kind {
@@ -193,7 +175,7 @@ pub fn tricky_faces(seed: u64, n: usize, translucent: bool) -> Scene {
             }
         }
     }
-    let quarter = |rng: &mut Dice| rng.below(5) as f64 / 4.0;
+    let quarter = |rng: &mut Rng| rng.below(5) as f64 / 4.0;
     for (k, t) in tris.iter().enumerate() {
         let transparency = if translucent { quarter(&mut rng) } else { 0.0 };
         let m = b.add_material(Material {
