@@ -77,7 +77,10 @@ fn spheres(c: &mut Criterion) {
 fn tori(c: &mut Criterion) {
     let cases = vec![
         ("interlocked/200".to_string(), interlocked_tori(200, 100)),
-        ("interpenetrating/200".to_string(), interpenetrating_tori(200, 100)),
+        (
+            "interpenetrating/200".to_string(),
+            interpenetrating_tori(200, 100),
+        ),
     ];
     bench(c, "tori", cases, 8);
 }
