@@ -88,9 +88,23 @@ impl Lighting {
         eye: DVec3,
         specular: bool,
     ) -> ([f64; 3], [f64; 3]) {
+        self.terms_on(normal, normal, point, eye, specular)
+    }
+
+    /// [`Self::terms`] with the side seen decided by the face's geometric normal `face`, not by
+    /// the shading normal: an interpolated normal near a silhouette may point slightly away from
+    /// the eye, and flipping it there would light the rim as if it faced the light.
+    pub fn terms_on(
+        &self,
+        normal: DVec3,
+        face: DVec3,
+        point: DVec3,
+        eye: DVec3,
+        specular: bool,
+    ) -> ([f64; 3], [f64; 3]) {
         let s = (eye - point).normalize_or_zero();
         let mut n = normal.normalize_or_zero();
-        if n.dot(s) < 0.0 {
+        if face.dot(s) < 0.0 {
             n = -n;
         }
         let mut lit = [self.ambient; 3];
@@ -265,6 +279,7 @@ impl Rays {
 /// colour follows `shading` (see the module docs), textured where the face's material has a
 /// texture and the face has texture coordinates (level of detail from the (u, v) of the rays
 /// through the next pixel right and the next pixel down, on the same face plane).
+#[allow(clippy::too_many_arguments)]
 pub fn shade_zbuffer(
     scene: &Scene,
     screen: &ScreenScene,
@@ -316,7 +331,7 @@ pub fn shade_zbuffer(
                     let c = hit.corners;
                     let t = c.map(|k| {
                         let (l, s) =
-                            lighting.terms(normals[f.start as usize + k], pts[k], eye, true);
+                            lighting.terms_on(normals[f.start as usize + k], n, pts[k], eye, true);
                         (l, s)
                     });
                     (
@@ -329,7 +344,7 @@ pub fn shade_zbuffer(
                         .corners
                         .map(|k| normals[f.start as usize + k].to_array());
                     let nn = DVec3::from_array(blend(hit.weights, c));
-                    lighting.terms(nn, hit.point, eye, true)
+                    lighting.terms_on(nn, n, hit.point, eye, true)
                 }
             };
             combine(base, m.emissive, lit, spec)

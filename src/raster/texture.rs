@@ -140,7 +140,7 @@ impl Mipmap {
     /// Trilinear sample at (u, v) with level of detail `d` (see the module docs).
     pub fn trilinear(&self, u: f64, v: f64, d: f64) -> [f64; 3] {
         let last = self.levels.len() - 1;
-        if !(d > 0.0) {
+        if d.is_nan() || d <= 0.0 {
             // Magnification, or no usable derivative (NaN): the finest level.
             return self.levels[0].bilinear(u, v);
         }

@@ -25,14 +25,17 @@ pub(super) fn parse(
     Ok(parse_with_textures(bytes, file, warnings)?.0)
 }
 
+/// A material's `map_Kd` file name as written, if it has one.
+pub(super) type TextureName = Option<Vec<u8>>;
+
 /// [`parse`], also returning each material's `map_Kd` file name (raw bytes, as written).
 pub(super) fn parse_with_textures(
     bytes: &[u8],
     file: &str,
     warnings: &mut Vec<String>,
-) -> Result<(Vec<Material>, Vec<Option<Vec<u8>>>), LoadError> {
+) -> Result<(Vec<Material>, Vec<TextureName>), LoadError> {
     let mut out: Vec<Material> = Vec::new();
-    let mut textures: Vec<Option<Vec<u8>>> = Vec::new();
+    let mut textures: Vec<TextureName> = Vec::new();
     let mut unknown_seen: Vec<Vec<u8>> = Vec::new();
     let mut warned_orphan = false;
     let mut pos = 0;
