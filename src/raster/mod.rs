@@ -2,9 +2,12 @@
 //! (A-buffer, scanline, Warnock) join it here.
 
 pub mod abuffer;
+pub mod interpolate;
+pub mod lighting;
 pub mod sample;
 pub mod scanline;
 pub mod shade;
+pub mod texture;
 pub mod warnock;
 pub mod zbuffer;
 

@@ -16,6 +16,13 @@ pub enum FaceOutcome {
     Degenerate,
 }
 
+/// Per-corner attributes of one input polygon, parallel to its corner list.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CornerAttrs<'a> {
+    pub normals: Option<&'a [DVec3]>,
+    pub uvs: Option<&'a [[f64; 2]]>,
+}
+
 /// Accumulates vertices, materials, meshes and faces; see [`Scene`] for the invariants kept.
 #[derive(Debug)]
 pub struct SceneBuilder {
@@ -105,6 +112,29 @@ impl SceneBuilder {
     /// Adds one input polygon (vertex indices, counter-clockwise seen from the front). The caller
     /// has checked that every index is in range. The polygon always uses up one id.
     pub fn add_face(&mut self, corners: &[u32], material: u32) -> FaceOutcome {
+        self.add_face_with(corners, material, CornerAttrs::default())
+    }
+
+    /// Sets the texture image of a material.
+    pub fn set_texture(&mut self, material: u32, path: std::path::PathBuf) {
+        let t = &mut self.scene.material_textures;
+        if t.len() <= material as usize {
+            t.resize(material as usize + 1, None);
+        }
+        t[material as usize] = Some(path);
+    }
+
+    /// [`Self::add_face`] with per-corner normals and texture coordinates (each, when given, as
+    /// long as `corners`). Dropped repeats and triangulated pieces keep the attributes of the
+    /// corner they came from (the first input corner with that vertex index).
+    pub fn add_face_with(
+        &mut self,
+        corners: &[u32],
+        material: u32,
+        attrs: CornerAttrs,
+    ) -> FaceOutcome {
+        debug_assert!(attrs.normals.is_none_or(|n| n.len() == corners.len()));
+        debug_assert!(attrs.uvs.is_none_or(|n| n.len() == corners.len()));
         debug_assert!(
             corners
                 .iter()
@@ -139,7 +169,7 @@ impl SceneBuilder {
             }
             Some((a, b, c)) => {
                 if clean.len() == 3 || is_planar(pos, &clean, a, b, c) {
-                    self.push_face(id, material, &clean);
+                    self.push_face(id, material, &clean, corners, attrs);
                     FaceOutcome::Kept
                 } else {
                     let triangles = triangulate(pos, &clean);
@@ -147,7 +177,7 @@ impl SceneBuilder {
                     let mut kept = 0;
                     for t in &triangles {
                         if non_collinear_triple(&self.scene.positions, t).is_some() {
-                            self.push_face(id, material, t);
+                            self.push_face(id, material, t, corners, attrs);
                             kept += 1;
                         }
                     }
@@ -159,9 +189,33 @@ impl SceneBuilder {
         outcome
     }
 
-    fn push_face(&mut self, id: FaceId, material: u32, corners: &[u32]) {
+    fn push_face(
+        &mut self,
+        id: FaceId,
+        material: u32,
+        corners: &[u32],
+        input: &[u32],
+        attrs: CornerAttrs,
+    ) {
         let start = self.scene.corners.len() as u32;
         self.scene.corners.extend_from_slice(corners);
+        // Attribute vectors stay empty until some face has the attribute, then cover every corner.
+        let from = |v: u32| input.iter().position(|&c| c == v).unwrap_or(0);
+        let n = self.scene.corners.len();
+        if let Some(normals) = attrs.normals {
+            let cn = &mut self.scene.corner_normals;
+            cn.resize(start as usize, None);
+            cn.extend(corners.iter().map(|&v| Some(normals[from(v)])));
+        } else if !self.scene.corner_normals.is_empty() {
+            self.scene.corner_normals.resize(n, None);
+        }
+        if let Some(uvs) = attrs.uvs {
+            let cu = &mut self.scene.corner_uvs;
+            cu.resize(start as usize, None);
+            cu.extend(corners.iter().map(|&v| Some(uvs[from(v)])));
+        } else if !self.scene.corner_uvs.is_empty() {
+            self.scene.corner_uvs.resize(n, None);
+        }
         self.scene.faces.push(Face {
             id,
             mesh: (self.scene.meshes.len() - 1) as u32,

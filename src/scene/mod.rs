@@ -20,11 +20,12 @@ mod stl;
 mod text;
 mod x3d;
 
-pub use builder::{FaceOutcome, SceneBuilder};
+pub use builder::{CornerAttrs, FaceOutcome, SceneBuilder};
 pub use load::{Format, load, load_bytes};
 
 use glam::DVec3;
 use std::ops::Range;
+use std::path::PathBuf;
 
 /// Index of an input face, in input order across the whole scene.
 pub type FaceId = u32;
@@ -115,6 +116,17 @@ pub struct Scene {
     /// Number of input faces: ids are in `0..input_faces`.
     pub input_faces: u32,
     pub stats: LoadStats,
+    /// Normals the file gives per face corner (OBJ `vn`, X3D `Normal`), parallel to `corners`;
+    /// empty when the file gives none at all, `None` at the corners of faces that have none.
+    /// Not normalized. See `raster::lighting::vertex_normals` for what is used instead.
+    pub corner_normals: Vec<Option<DVec3>>,
+    /// Texture coordinates per face corner (OBJ `vt`, X3D `TextureCoordinate`), parallel to
+    /// `corners`; empty when the file gives none, `None` at corners of faces without them.
+    pub corner_uvs: Vec<Option<[f64; 2]>>,
+    /// Texture image of each material (OBJ `map_Kd`, X3D `ImageTexture`), indexed like
+    /// `materials`; a material past its end has none. Paths are resolved against the file's
+    /// directory; the image is read only when rendering.
+    pub material_textures: Vec<Option<PathBuf>>,
 }
 
 impl Scene {
@@ -147,6 +159,23 @@ impl Scene {
             hi = hi.max(*p);
         }
         Some((lo, hi))
+    }
+
+    /// The file's normals at a face's corners, if it gave one at every corner.
+    pub fn face_corner_normals(&self, face: &Face) -> Option<Vec<DVec3>> {
+        let r = face.start as usize..(face.start + face.len) as usize;
+        self.corner_normals.get(r)?.iter().copied().collect()
+    }
+
+    /// The texture coordinates at a face's corners, if it has them at every corner.
+    pub fn face_corner_uvs(&self, face: &Face) -> Option<Vec<[f64; 2]>> {
+        let r = face.start as usize..(face.start + face.len) as usize;
+        self.corner_uvs.get(r)?.iter().copied().collect()
+    }
+
+    /// The texture image path of a material, if it has one.
+    pub fn texture_of(&self, material: u32) -> Option<&std::path::Path> {
+        self.material_textures.get(material as usize)?.as_deref()
     }
 
     /// Newell normal of a face (not normalized; its length is twice the area).

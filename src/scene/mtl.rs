@@ -6,21 +6,36 @@
 //! Read: `newmtl NAME`, `Kd r [g b]` (diffuse), `Ke r [g b]` (emissive), `d x` (transparency
 //! 1 - x, `-halo` accepted and ignored) and `Tr x` (transparency x); when a material has both `d`
 //! and `Tr` the later statement wins. Other standard statements (`Ka`, `Ks`, `Ns`, `illum`,
-//! `map_*`, ...) are ignored silently since they do not change what a face looks like here;
+//! `map_*` other than `map_Kd`, ...) are ignored silently since they do not change what a face looks like here;
 //! unknown ones get one warning per keyword. `Kd spectral` / `Kd xyz` get a warning and are
-//! ignored. Errors (bad or non-finite numbers, wrong value counts) name the `.mtl` file and line.
+//! ignored. `map_Kd [options] FILE` names the diffuse texture: the last token is the file (option
+//! values are skipped, not applied); `map_Kd` with nothing after it is an error. Errors (bad or non-finite numbers, wrong value counts) name the `.mtl` file and line.
 
 use super::Material;
 use super::text::{Tokens, lossy, next_line, parse_f64, show, strip_comment};
 use crate::error::LoadError;
 
 /// Parses a material library. `file` names it in errors and warnings.
+#[cfg(test)]
 pub(super) fn parse(
     bytes: &[u8],
     file: &str,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<Material>, LoadError> {
+    Ok(parse_with_textures(bytes, file, warnings)?.0)
+}
+
+/// A material's `map_Kd` file name as written, if it has one.
+pub(super) type TextureName = Option<Vec<u8>>;
+
+/// [`parse`], also returning each material's `map_Kd` file name (raw bytes, as written).
+pub(super) fn parse_with_textures(
+    bytes: &[u8],
+    file: &str,
+    warnings: &mut Vec<String>,
+) -> Result<(Vec<Material>, Vec<TextureName>), LoadError> {
     let mut out: Vec<Material> = Vec::new();
+    let mut textures: Vec<TextureName> = Vec::new();
     let mut unknown_seen: Vec<Vec<u8>> = Vec::new();
     let mut warned_orphan = false;
     let mut pos = 0;
@@ -40,6 +55,17 @@ pub(super) fn parse(
                 name,
                 ..Material::default()
             });
+            textures.push(None);
+            continue;
+        }
+        if kw == b"map_Kd" {
+            let Some(name) = toks.last() else {
+                return Err(LoadError::line(file, line, "map_Kd without a file name"));
+            };
+            match textures.last_mut() {
+                Some(t) => *t = Some(name.to_vec()),
+                None => warnings.push(format!("{file}:{line}: 'map_Kd' before any newmtl ignored")),
+            }
             continue;
         }
         let known = matches!(kw, b"Kd" | b"Ke" | b"d" | b"Tr");
@@ -139,7 +165,7 @@ pub(super) fn parse(
             }
         }
     }
-    Ok(out)
+    Ok((out, textures))
 }
 
 /// Reads up to `N` finite numbers; returns how many tokens there were (more than `N` is reported

@@ -4,10 +4,13 @@
 //! builder): every corner index is in range, every coordinate is finite, faces keep the file's
 //! winding, and face ids follow the order of the `f` statements.
 //!
-//! Read: `v x y z [w]` (w and trailing vertex colours ignored), `f` with any number of corners in
-//! the forms `i`, `i/t`, `i//n`, `i/t/n` (texture and normal indices are checked for syntax only),
-//! negative indices (relative to the vertices defined before that line), `o`, `usemtl`, `mtllib`,
-//! `#` comments, `\r\n` endings and trailing-backslash line continuations.
+//! Read: `v x y z [w]` (w and trailing vertex colours ignored), `vt u [v [w]]` (v defaults to 0,
+//! w ignored), `vn x y z`, `f` with any number of corners in the forms `i`, `i/t`, `i//n`, `i/t/n`,
+//! negative indices (relative to the vertices, texture coordinates or normals defined before that
+//! line), `o`, `usemtl`, `mtllib`, `#` comments, `\r\n` endings and trailing-backslash line
+//! continuations. A face gets texture coordinates (normals) only when every one of its corners
+//! names one; texture and normal indices are range-checked like vertex indices, and an index out
+//! of range is an error naming the face's line.
 //!
 //! `o NAME` starts a new mesh. `g NAME` does not: groups are labels only, because closedness and
 //! orientation are decided per mesh and exporters freely split one closed solid into several
@@ -17,7 +20,7 @@
 //! builder only after every vertex is read); such an index that is still out of range at the end
 //! is reported at its own line, but only after the rest of the file parsed without error.
 //!
-//! `vt`, `vn`, `vp`, `s`, `g`, `l` and `p` are ignored; any other statement gets one warning per
+//! `vp`, `s`, `g`, `l` and `p` are ignored; any other statement gets one warning per
 //! keyword. A missing or unreadable `.mtl` is a warning, an error inside one is an error naming
 //! that file. With no directory (bytes loaded from memory) `mtllib` is not followed.
 //!
@@ -31,7 +34,7 @@
 use super::text::{
     Tokens, file_label, lossy, next_line, parse_coord, parse_int, show, strip_comment,
 };
-use super::{Material, Scene, SceneBuilder, mtl};
+use super::{CornerAttrs, Material, Scene, SceneBuilder, mtl};
 use crate::error::LoadError;
 use glam::DVec3;
 use std::collections::HashMap;
@@ -76,11 +79,14 @@ pub(super) fn load(bytes: &[u8], name: &str, dir: Option<&Path>) -> Result<Scene
 /// A face as read in the first pass: its corners are the next `len` entries of `Parser::corners`.
 struct FaceRec {
     len: u32,
+    line: usize,
     /// Index into `Parser::mat_names`, or `NO_MATERIAL`.
     slot: u32,
 }
 
 const NO_MATERIAL: u32 = u32::MAX;
+/// A corner without a texture coordinate or normal index.
+const NONE: u32 = u32::MAX;
 
 struct Parser<'a> {
     name: &'a str,
@@ -88,6 +94,11 @@ struct Parser<'a> {
     builder: SceneBuilder,
     /// Corner indices (0-based, already resolved) of all faces, face after face.
     corners: Vec<u32>,
+    /// Per corner: 0-based `vt` and `vn` index (resolved, range-checked at the end), or `NONE`.
+    corner_tex: Vec<u32>,
+    corner_nor: Vec<u32>,
+    uvs: Vec<[f64; 2]>,
+    normals: Vec<DVec3>,
     faces: Vec<FaceRec>,
     /// `o` statements: (number of faces before it, object name).
     objects: Vec<(usize, String)>,
@@ -96,7 +107,7 @@ struct Parser<'a> {
     mat_slots: HashMap<String, u32>,
     slot: u32,
     /// Materials read from the `.mtl` files, first definition of a name wins.
-    library: HashMap<String, Material>,
+    library: HashMap<String, (Material, Option<PathBuf>)>,
     /// Positive indices past the vertices defined so far: (line, 1-based index, vertices defined
     /// before that line). Only entries larger than every earlier one are kept, which is enough to
     /// find the first out-of-range one at the end.
@@ -112,6 +123,10 @@ impl<'a> Parser<'a> {
             dir,
             builder: SceneBuilder::new(name),
             corners: Vec::new(),
+            corner_tex: Vec::new(),
+            corner_nor: Vec::new(),
+            uvs: Vec::new(),
+            normals: Vec::new(),
             faces: Vec::new(),
             objects: Vec::new(),
             mat_names: Vec::new(),
@@ -165,7 +180,34 @@ impl<'a> Parser<'a> {
                 Ok(())
             }
             b"mtllib" => self.mtllib(toks.rest(), line),
-            b"vt" | b"vn" | b"vp" | b"s" | b"g" | b"l" | b"p" => Ok(()),
+            b"vt" => {
+                let mut uv = [0.0; 2];
+                let mut n = 0;
+                for t in toks.take(3) {
+                    let x = parse_coord(t).map_err(|m| self.err(line, m))?;
+                    if n < 2 {
+                        uv[n] = x;
+                    }
+                    n += 1;
+                }
+                if n == 0 {
+                    return Err(self.err(line, "vt has no coordinates, needs 1 to 3"));
+                }
+                self.uvs.push(uv);
+                Ok(())
+            }
+            b"vn" => {
+                let mut c = [0.0f64; 3];
+                for (i, slot) in c.iter_mut().enumerate() {
+                    let Some(t) = toks.next() else {
+                        return Err(self.err(line, format!("vn has {i} coordinates, needs 3")));
+                    };
+                    *slot = parse_coord(t).map_err(|m| self.err(line, m))?;
+                }
+                self.normals.push(DVec3::from_array(c));
+                Ok(())
+            }
+            b"vp" | b"s" | b"g" | b"l" | b"p" => Ok(()),
             _ => {
                 if !self.unknown_seen.iter().any(|k| k == kw) {
                     self.unknown_seen.push(kw.to_vec());
@@ -201,9 +243,15 @@ impl<'a> Parser<'a> {
         let start = self.corners.len();
         for t in toks {
             match self.corner(t, line, defined) {
-                Ok(v) => self.corners.push(v),
+                Ok((v, tex, nor)) => {
+                    self.corners.push(v);
+                    self.corner_tex.push(tex);
+                    self.corner_nor.push(nor);
+                }
                 Err(e) => {
                     self.corners.truncate(start);
+                    self.corner_tex.truncate(start);
+                    self.corner_nor.truncate(start);
                     return Err(e);
                 }
             }
@@ -211,6 +259,8 @@ impl<'a> Parser<'a> {
         let n = self.corners.len() - start;
         if n < 3 {
             self.corners.truncate(start);
+            self.corner_tex.truncate(start);
+            self.corner_nor.truncate(start);
             return Err(self.err(line, format!("face has {n} corners, needs at least 3")));
         }
         // Face ids and corner offsets in a scene are u32.
@@ -219,14 +269,62 @@ impl<'a> Parser<'a> {
         }
         self.faces.push(FaceRec {
             len: n as u32,
+            line,
             slot: self.slot,
         });
         Ok(())
     }
 
-    /// Resolves one face corner to a 0-based vertex index (range-checked now for negative
-    /// indices, at the end for positive ones past the vertices defined so far).
-    fn corner(&mut self, t: &[u8], line: usize, defined: usize) -> Result<u32, LoadError> {
+    /// Resolves one face corner to 0-based vertex, texture-coordinate and normal indices (the
+    /// last two `NONE` when absent). Negative indices are range-checked now; positive ones past
+    /// what is defined so far at the end.
+    fn corner(
+        &mut self,
+        t: &[u8],
+        line: usize,
+        defined: usize,
+    ) -> Result<(u32, u32, u32), LoadError> {
+        let v = self.vertex_index(t, line, defined)?;
+        let mut parts = t.split(|&b| b == b'/').skip(1);
+        let tex = self.attr_index(parts.next(), "texture coordinate", self.uvs.len(), line)?;
+        let nor = self.attr_index(parts.next(), "normal", self.normals.len(), line)?;
+        Ok((v, tex, nor))
+    }
+
+    /// A `vt` or `vn` index of a corner (syntax already checked): 0-based, or `NONE` when empty.
+    fn attr_index(
+        &self,
+        part: Option<&[u8]>,
+        what: &str,
+        defined: usize,
+        line: usize,
+    ) -> Result<u32, LoadError> {
+        let Some(i) = part.filter(|p| !p.is_empty()).and_then(parse_int) else {
+            return Ok(NONE);
+        };
+        if i == 0 {
+            return Err(self.err(line, format!("{what} index 0 (OBJ indices start at 1)")));
+        }
+        if i < 0 {
+            let abs = i.unsigned_abs();
+            if abs > defined as u64 {
+                return Err(self.err(
+                    line,
+                    format!(
+                        "{what} index {i} out of range: only {defined} are defined before this line"
+                    ),
+                ));
+            }
+            return Ok((defined as u64 - abs) as u32);
+        }
+        // Checked against the whole file at the end; NONE - 1 would be ambiguous, so refuse it.
+        if i as u64 >= NONE as u64 {
+            return Err(self.err(line, format!("{what} index {i} out of range")));
+        }
+        Ok((i - 1) as u32)
+    }
+
+    fn vertex_index(&mut self, t: &[u8], line: usize, defined: usize) -> Result<u32, LoadError> {
         let mut parts = t.split(|&b| b == b'/');
         let v = parts.next().unwrap_or(&[]);
         let tex = parts.next();
@@ -315,18 +413,21 @@ impl<'a> Parser<'a> {
                 }
             };
             let mut warnings = Vec::new();
-            let materials = mtl::parse(&bytes, &shown, &mut warnings)?;
+            let (materials, textures) = mtl::parse_with_textures(&bytes, &shown, &mut warnings)?;
             for w in warnings {
                 self.builder.warn(w);
             }
-            for m in materials {
+            // A texture is named relative to its material library.
+            let mtl_dir = path.parent().unwrap_or(dir).to_path_buf();
+            for (m, t) in materials.into_iter().zip(textures) {
                 if self.library.contains_key(&m.name) {
                     self.builder.warn(format!(
                         "{shown}: material '{}' defined again; the first definition is used",
                         m.name
                     ));
                 } else {
-                    self.library.insert(m.name.clone(), m);
+                    let t = t.map(|t| mtl_dir.join(path_from_bytes(&t)));
+                    self.library.insert(m.name.clone(), (m, t));
                 }
             }
         }
@@ -344,12 +445,41 @@ impl<'a> Parser<'a> {
             ));
         }
 
+        for (what, idx, total) in [
+            ("texture coordinate", &self.corner_tex, self.uvs.len()),
+            ("normal", &self.corner_nor, self.normals.len()),
+        ] {
+            let mut start = 0usize;
+            for f in &self.faces {
+                let end = start + f.len as usize;
+                if let Some(&i) = idx[start..end]
+                    .iter()
+                    .find(|&&i| i != NONE && i as usize >= total)
+                {
+                    return Err(self.err(
+                        f.line,
+                        format!(
+                            "{what} index {} out of range: the file has {total}",
+                            i as u64 + 1
+                        ),
+                    ));
+                }
+                start = end;
+            }
+        }
+
         let mut b = self.builder;
         // Resolve material names to scene materials, in order of first use.
         let mut slot_material = Vec::with_capacity(self.mat_names.len());
         for name in &self.mat_names {
             match self.library.get(name) {
-                Some(m) => slot_material.push(b.add_material(m.clone())),
+                Some((m, t)) => {
+                    let id = b.add_material(m.clone());
+                    if let Some(t) = t {
+                        b.set_texture(id, t.clone());
+                    }
+                    slot_material.push(id)
+                }
                 None => {
                     b.warn(format!(
                         "{}: material '{name}' is not defined in any material library; default material used",
@@ -374,7 +504,17 @@ impl<'a> Parser<'a> {
                 None => *default.get_or_insert_with(|| b.default_material()),
             };
             if let Some(c) = self.corners.get(start..end) {
-                b.add_face(c, material);
+                let tex = &self.corner_tex[start..end];
+                let nor = &self.corner_nor[start..end];
+                let uvs: Option<Vec<[f64; 2]>> = (!tex.contains(&NONE))
+                    .then(|| tex.iter().map(|&i| self.uvs[i as usize]).collect());
+                let normals: Option<Vec<DVec3>> = (!nor.contains(&NONE))
+                    .then(|| nor.iter().map(|&i| self.normals[i as usize]).collect());
+                let attrs = CornerAttrs {
+                    normals: normals.as_deref(),
+                    uvs: uvs.as_deref(),
+                };
+                b.add_face_with(c, material, attrs);
             }
             start = end;
         }
