@@ -282,20 +282,3 @@ mod tests {
         );
     }
 }
-
-/// Do two faces lie in one plane, exactly (robust's adaptive orient3d on the input
-/// coordinates)? Every corner of `g` is on the plane through three non-collinear corners of `f`
-/// (chosen exactly). Faces are planar by the builder's invariant, so this is symmetric.
-pub fn coplanar(scene: &Scene, f: &Face, g: &Face) -> bool {
-    use super::builder::{c3, non_collinear_triple};
-    let fc = scene.face_corners(f);
-    let Some((a, b, c)) = non_collinear_triple(&scene.positions, fc) else {
-        return false;
-    };
-    let p = |i: u32| c3(scene.positions[i as usize]);
-    let (a, b, c) = (p(fc[a]), p(fc[b]), p(fc[c]));
-    scene
-        .face_corners(g)
-        .iter()
-        .all(|&i| robust::orient3d(a, b, c, p(i)) == 0.0)
-}

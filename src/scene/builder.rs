@@ -249,7 +249,7 @@ impl SceneBuilder {
     }
 }
 
-pub(crate) fn c3(p: DVec3) -> Coord3D<f64> {
+fn c3(p: DVec3) -> Coord3D<f64> {
     Coord3D {
         x: p.x,
         y: p.y,
@@ -273,7 +273,7 @@ fn collinear(a: DVec3, b: DVec3, c: DVec3) -> bool {
 
 /// Positions in `corners` of three points that are not collinear, chosen exactly; `None` when the
 /// polygon is degenerate.
-pub(crate) fn non_collinear_triple(pos: &[DVec3], corners: &[u32]) -> Option<(usize, usize, usize)> {
+fn non_collinear_triple(pos: &[DVec3], corners: &[u32]) -> Option<(usize, usize, usize)> {
     if corners.len() < 3 {
         return None;
     }
