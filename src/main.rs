@@ -490,14 +490,21 @@ fn output_format(a: &RenderArgs) -> sightline::Result<OutputFormat> {
     })
 }
 
-/// The drawing of an object-space method, with its stats.
+/// The drawing of an object-space method, with its stats. `merge_surfaces`: draw coplanar faces
+/// of one paint as one region (for pictures; per-face output such as JSON must not).
 fn run_method(
     method: Method,
     scene: &Scene,
     prepared: &pipeline::Prepared,
     camera: &Camera,
     fill: Fill,
+    merge_surfaces: bool,
 ) -> sightline::visibility::VisibilityResult {
+    use sightline::visibility::VisibilityMethod;
+    if method == Method::Bsp {
+        let m = sightline::visibility::BspMethod { merge_surfaces };
+        return m.run(scene, &prepared.screen, camera, fill);
+    }
     let m = sightline::visibility::method_by_name(method.name())
         .expect("every object-space CLI method is registered");
     m.run(scene, &prepared.screen, camera, fill)
@@ -558,7 +565,8 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             r.detail,
         )
     } else {
-        let mut result = run_method(a.method, &scene, &prepared, &camera, a.fill);
+        let merge = format != OutputFormat::Json;
+        let mut result = run_method(a.method, &scene, &prepared, &camera, a.fill, merge);
         if result.drawing.background.is_none() {
             result.drawing.background = Some(bg);
         }
@@ -628,7 +636,7 @@ fn face_ids_of(
             .map(|&p| (p != sightline::raster::EMPTY).then(|| polys[p as usize].id))
             .collect()
     } else {
-        let result = run_method(method, scene, prepared, camera, Fill::Id);
+        let result = run_method(method, scene, prepared, camera, Fill::Id, false);
         sightline::output::raster_drawing::face_ids(&result.drawing)
     };
     (ids, t.elapsed().as_secs_f64())

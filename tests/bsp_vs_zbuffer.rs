@@ -133,7 +133,7 @@ fn regions_per_face(file: &str, view: NamedView) -> std::collections::BTreeMap<u
     let scene = sightline::load(std::path::Path::new(file), None).unwrap();
     let cam = Camera::fit(view, scene.bounds().unwrap(), false, 40.0, 200, 200);
     let prepared = sightline::pipeline::prepare(&scene, &cam, CullMode::Auto);
-    let result = BspMethod.run(
+    let result = BspMethod::default().run(
         &scene,
         &prepared.screen,
         &cam,

@@ -20,6 +20,7 @@ use support::{add_triangle, interior_mismatches, pixel_of};
 fn item(face: u32, rings: Vec<Vec<[f64; 2]>>, color: [f64; 3], opacity: f64) -> DrawItem {
     DrawItem {
         face,
+        merged: Vec::new(),
         material: 0,
         rings,
         color,
@@ -352,7 +353,7 @@ fn seed_transparent_scene_blends_exactly() {
 
 #[test]
 fn seed_transparent_scene_blends_exactly_with_bsp() {
-    check_seed_transparent(&sightline::visibility::BspMethod);
+    check_seed_transparent(&sightline::visibility::BspMethod::default());
 }
 
 fn check_seed_transparent(method: &dyn sightline::visibility::VisibilityMethod) {
@@ -547,4 +548,83 @@ fn the_method_list_has_the_painter_marked_approximate() {
     assert!(ms.iter().any(|m| m.name() == "painter" && !m.exact()));
     assert!(sightline::visibility::method_by_name("painter").is_some());
     assert!(sightline::visibility::method_by_name("nope").is_none());
+}
+
+/// A flat face stored as a fan of triangles (as CAD exports do), next to a tilted triangle of the
+/// same material and a coplanar triangle of another colour: with surface merging the fan is one
+/// SVG path listing all its faces, the others stay apart, and JSON (never merged) keeps one
+/// entry per face; the face ids at pixel centres are the same either way.
+#[test]
+fn coplanar_faces_of_one_paint_are_drawn_as_one_region() {
+    use sightline::visibility::BspMethod;
+    let mut b = SceneBuilder::new("fan");
+    b.begin_mesh("fan");
+    let m = b.default_material();
+    let red = b.add_material(Material {
+        name: "red".into(),
+        diffuse: [1.0, 0.0, 0.0],
+        ..Material::default()
+    });
+    // A hexagon in z = 0 as six triangles around its centre (ids 0..6).
+    let c = b.add_vertex(DVec3::ZERO);
+    let ring: Vec<u32> = (0..6)
+        .map(|k| {
+            let a = std::f64::consts::PI / 3.0 * k as f64;
+            b.add_vertex(DVec3::new(a.cos(), a.sin(), 0.0))
+        })
+        .collect();
+    for k in 0..6 {
+        b.add_face(&[c, ring[k], ring[(k + 1) % 6]], m);
+    }
+    // Same plane, other colour (id 6); tilted, same material (id 7).
+    let p = [(1.2, 0.0), (2.2, 0.0), (1.7, 0.8)].map(|(x, y)| b.add_vertex(DVec3::new(x, y, 0.0)));
+    b.add_face(&p, red);
+    let t = [(-1.2, 0.0, 0.0), (-2.2, 0.0, 0.3), (-1.7, 0.8, 0.0)]
+        .map(|(x, y, z)| b.add_vertex(DVec3::new(x, y, z)));
+    b.add_face(&t, m);
+    let scene = b.finish().unwrap();
+    let cam = Camera {
+        eye: DVec3::new(0.0, 0.0, 5.0),
+        target: DVec3::ZERO,
+        up: DVec3::Y,
+        projection: Projection::Orthographic { height: 3.0 },
+        near: 1.0,
+        far: 10.0,
+        width: 160,
+        height: 100,
+    };
+    let screen = prepare(&scene, &cam, CullMode::Off).screen;
+    let merged = BspMethod {
+        merge_surfaces: true,
+    }
+    .run(&scene, &screen, &cam, Fill::Shade);
+    let apart = BspMethod::default().run(&scene, &screen, &cam, Fill::Shade);
+    let svg = write_svg(&merged.drawing, &SvgOptions::default());
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let faces: Vec<Option<&str>> = svg_paths(&doc)
+        .iter()
+        .map(|p| p.attribute("data-faces"))
+        .collect();
+    assert_eq!(faces.len(), 3, "{svg}");
+    assert_eq!(
+        faces.iter().flatten().collect::<Vec<_>>(),
+        vec![&"0 1 2 3 4 5"],
+        "{svg}"
+    );
+    assert_eq!(apart.drawing.items.len(), 8);
+    assert!(apart.drawing.items.iter().all(|it| it.merged.is_empty()));
+    assert_eq!(
+        face_ids(&merged.drawing)
+            .iter()
+            .map(|f| f.is_some())
+            .collect::<Vec<_>>(),
+        face_ids(&apart.drawing)
+            .iter()
+            .map(|f| f.is_some())
+            .collect::<Vec<_>>(),
+        "merging changes no coverage"
+    );
+    let json = write_json(&apart.drawing, &scene, &apart.stats);
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["faces"].as_array().unwrap().len(), 8);
 }

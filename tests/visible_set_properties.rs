@@ -1454,11 +1454,15 @@ fn check_determinism(case: &Case) -> Result<(), Skip> {
     for fill in [Fill::Shade, Fill::Id] {
         let options = SvgOptions::default();
         let a = write_svg(
-            &BspMethod.run(&s1.scene, &p1, &s1.camera, fill).drawing,
+            &BspMethod::default()
+                .run(&s1.scene, &p1, &s1.camera, fill)
+                .drawing,
             &options,
         );
         let b = write_svg(
-            &BspMethod.run(&s2.scene, &p2, &s2.camera, fill).drawing,
+            &BspMethod::default()
+                .run(&s2.scene, &p2, &s2.camera, fill)
+                .drawing,
             &options,
         );
         assert!(

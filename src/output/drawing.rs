@@ -12,6 +12,9 @@ use crate::scene::FaceId;
 pub struct DrawItem {
     /// Provenance: the input face id.
     pub face: FaceId,
+    /// Other input faces the region also covers, ascending: coplanar faces of the same paint
+    /// drawn as one surface (empty unless asked for).
+    pub merged: Vec<FaceId>,
     /// Index into `Scene::materials`.
     pub material: u32,
     /// Closed rings (the last point is not repeated), pixels, y down; even-odd fill.

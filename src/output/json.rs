@@ -21,6 +21,9 @@
 //! }
 //! ```
 //!
+//! JSON is per face: write it from a drawing made without surface merging (the CLI does); an
+//! item merged across faces would be listed under its first face only.
+//!
 //! A region is a list of rings rather than a single ring so that a region with holes keeps its
 //! even-odd meaning and two regions of one face are never mistaken for one ring set.
 //! Coordinates are pixels, y down, written as the shortest decimal that parses back to the same

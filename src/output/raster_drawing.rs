@@ -165,6 +165,7 @@ mod tests {
     fn item(face: FaceId, rings: Vec<Vec<[f64; 2]>>, color: [f64; 3], opacity: f64) -> DrawItem {
         DrawItem {
             face,
+            merged: Vec::new(),
             material: 0,
             rings,
             color,

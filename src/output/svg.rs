@@ -5,7 +5,8 @@
 //!   formatting, so parsing the file back gives the drawing's f64 values bit for bit (-0 is
 //!   written as 0). The `svg` crate would store path numbers as f32 (about 7 digits), so the path
 //!   data string is built here and handed to it whole.
-//! - **Provenance**: every path carries `data-face="ID"`, the input face id of its item.
+//! - **Provenance**: every path carries `data-face="ID"`, the input face id of its item; a region
+//!   merged from coplanar faces of one paint also lists them all, `data-faces="ID ID ..."`.
 //! - **Fill**: `fill-rule="evenodd"` (holes are rings of the same path), `fill="#rrggbb"` (8-bit,
 //!   rounded), `fill-opacity` only when below 1.
 //! - **Deterministic**: the same drawing and options give the same bytes (the `svg` crate writes
@@ -72,6 +73,13 @@ pub fn write_svg(drawing: &Drawing, options: &SvgOptions) -> String {
             .set("fill", hex(item.color))
             .set("fill-rule", "evenodd")
             .set("data-face", item.face);
+        if !item.merged.is_empty() {
+            let all: Vec<String> = std::iter::once(item.face)
+                .chain(item.merged.iter().copied())
+                .map(|f| f.to_string())
+                .collect();
+            path = path.set("data-faces", all.join(" "));
+        }
         if item.opacity < 1.0 {
             path = path.set("fill-opacity", num(item.opacity.max(0.0)));
         }

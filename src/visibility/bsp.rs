@@ -24,6 +24,7 @@
 //! polygon), the z-buffer's tie rule: output never depends on input order.
 
 use super::coverage::{Coverage, CoverageStats, bounds, tie_key};
+use super::regions::{regions, surfaces};
 use crate::camera::Camera;
 use crate::exact::polygon::{Piece, Split, convex_pieces, separated};
 use crate::exact::predicates::{Line, line_side};
@@ -440,7 +441,14 @@ impl VisibleSet {
 /// The BSP strategy behind the common trait. Opaque scenes draw the exact visible set; a scene
 /// with translucent faces (under `Fill::Shade`) draws every fragment back to front, in the BSP's
 /// exact order, so each translucent fragment blends over what lies behind it.
-pub struct BspMethod;
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BspMethod {
+    /// Draw abutting visible regions of coplanar faces with the same colour and material as one
+    /// region (listing every face it covers), so that viewers' anti-aliasing shows no cracks
+    /// inside a surface (a CAD face triangulated in the file). Off: one region set per face, as
+    /// per-face output (JSON) needs.
+    pub merge_surfaces: bool,
+}
 
 impl super::VisibilityMethod for BspMethod {
     fn name(&self) -> &'static str {
@@ -508,6 +516,7 @@ impl super::VisibilityMethod for BspMethod {
             let (color, opacity) = super::face_paint(scene, poly.face as usize, camera, fill);
             DrawItem {
                 face: poly.id,
+                merged: Vec::new(),
                 material: scene.faces[poly.face as usize].material,
                 rings,
                 color,
@@ -517,24 +526,31 @@ impl super::VisibilityMethod for BspMethod {
         let items: Vec<DrawItem> = if translucent {
             // Painter order matters: one item per fragment.
             pieces.iter().map(|p| item(p, vec![ring(p)])).collect()
+        } else if self.merge_surfaces {
+            // Coplanar faces of one colour and material read as one surface: one region.
+            // One paint is what the output shows: the 8-bit colour, material and opacity.
+            let surface = surfaces(scene, screen, |poly| {
+                let (color, opacity) = super::face_paint(scene, poly.face as usize, camera, fill);
+                (
+                    crate::raster::shade::to_u8(color),
+                    scene.faces[poly.face as usize].material,
+                    opacity.to_bits(),
+                )
+            });
+            regions(&pieces, screen, |p| surface[p.poly as usize])
+                .into_iter()
+                .map(|r| {
+                    let mut it = item(&pieces[r.piece], r.rings);
+                    it.face = r.faces[0];
+                    it.merged = r.faces[1..].to_vec();
+                    it
+                })
+                .collect()
         } else {
             // Disjoint pieces: merge each face's into regions with holes.
-            let mut by_face: std::collections::BTreeMap<u32, Vec<&Piece>> = Default::default();
-            for p in &pieces {
-                by_face
-                    .entry(screen.polys[p.poly as usize].id)
-                    .or_default()
-                    .push(p);
-            }
-            by_face
-                .into_values()
-                .flat_map(|group| {
-                    let first = group[0];
-                    merge_rings(conforming_rings(&group, &s))
-                        .into_iter()
-                        .map(move |rings| item(first, rings))
-                        .collect::<Vec<_>>()
-                })
+            regions(&pieces, screen, |p| screen.polys[p.poly as usize].id)
+                .into_iter()
+                .map(|r| item(&pieces[r.piece], r.rings))
                 .collect()
         };
         super::VisibilityResult {
@@ -547,91 +563,4 @@ impl super::VisibilityMethod for BspMethod {
             stats,
         }
     }
-}
-
-/// The pixel rings of one face's pieces, made conforming: where a vertex of one piece lies on an
-/// edge of another (a T-junction, decided exactly), it is inserted into that edge with the very
-/// same f64 coordinates, so shared boundaries are identical segments and the union below closes
-/// them without slivers.
-fn conforming_rings(pieces: &[&Piece], s: &Samples) -> Vec<Vec<[f64; 2]>> {
-    let px = |[x, y]: [f64; 2]| [s.col_of(x), s.row_of(y)];
-    let boxes: Vec<[f64; 4]> = pieces.iter().map(|p| bounds(p)).collect();
-    pieces
-        .iter()
-        .enumerate()
-        .map(|(a, pa)| {
-            let n = pa.len();
-            let mut ring = Vec::with_capacity(n);
-            for k in 0..n {
-                let start = pa.vertex_f64(k);
-                ring.push(px(start));
-                // Vertices of other pieces strictly inside edge k (line k, between vertices k
-                // and k+1): on line k, strictly inside every other line.
-                let edge = &pa.lines[k];
-                let mut on_edge: Vec<(f64, [f64; 2])> = Vec::new();
-                for (b, pb) in pieces.iter().enumerate() {
-                    let (ba, bb) = (&boxes[a], &boxes[b]);
-                    if b == a || ba[0] > bb[2] || bb[0] > ba[2] || ba[1] > bb[3] || bb[1] > ba[3] {
-                        continue;
-                    }
-                    for v in 0..pb.len() {
-                        if pb.vertex_line_sign(v, edge) != Ordering::Equal {
-                            continue;
-                        }
-                        let inside =
-                            pa.lines.iter().enumerate().all(|(j, l)| {
-                                j == k || pb.vertex_line_sign(v, l) == Ordering::Greater
-                            });
-                        if inside {
-                            let q = pb.vertex_f64(v);
-                            let t = (q[0] - start[0]).abs() + (q[1] - start[1]).abs();
-                            on_edge.push((t, q));
-                        }
-                    }
-                }
-                on_edge.sort_by(|x, y| x.0.total_cmp(&y.0));
-                on_edge.dedup_by(|x, y| x.1 == y.1);
-                ring.extend(on_edge.into_iter().map(|(_, q)| px(q)));
-            }
-            ring
-        })
-        .collect()
-}
-
-/// The union of one face's disjoint convex rings (pixel coordinates) as regions, each an outer
-/// ring followed by its holes. geo's boolean union works in f64 on coordinates already rounded for
-/// output, and its snapping moves a point by far less than a millionth of a pixel: within the
-/// output-rounding approximation. A single ring is returned as it is.
-fn merge_rings(rings: Vec<Vec<[f64; 2]>>) -> Vec<Vec<Vec<[f64; 2]>>> {
-    use geo::{LineString, Polygon};
-    if rings.len() == 1 {
-        return vec![rings];
-    }
-    let polys: Vec<Polygon<f64>> = rings
-        .into_iter()
-        .map(|r| {
-            Polygon::new(
-                LineString::from(r.into_iter().map(|[x, y]| (x, y)).collect::<Vec<_>>()),
-                vec![],
-            )
-        })
-        .collect();
-    let merged = geo::algorithm::bool_ops::unary_union(&polys);
-    let open = |ls: &LineString<f64>| -> Vec<[f64; 2]> {
-        let mut v: Vec<[f64; 2]> = ls.coords().map(|c| [c.x, c.y]).collect();
-        // geo closes rings by repeating the first point; drawings do not.
-        if v.len() > 1 && v.first() == v.last() {
-            v.pop();
-        }
-        v
-    };
-    merged
-        .0
-        .iter()
-        .map(|poly| {
-            std::iter::once(open(poly.exterior()))
-                .chain(poly.interiors().iter().map(open))
-                .collect()
-        })
-        .collect()
 }

@@ -16,6 +16,7 @@
 pub mod bsp;
 pub mod coverage;
 pub mod painter;
+pub mod regions;
 
 pub use bsp::BspMethod;
 pub use painter::Painter;
@@ -53,7 +54,7 @@ pub struct VisibilityResult {
 
 /// Every strategy, in the order the CLI lists them.
 pub fn methods() -> Vec<Box<dyn VisibilityMethod>> {
-    vec![Box::new(BspMethod), Box::new(Painter)]
+    vec![Box::new(BspMethod::default()), Box::new(Painter)]
 }
 
 /// The strategy called `name`, if any.

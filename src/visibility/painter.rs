@@ -53,6 +53,7 @@ impl VisibilityMethod for Painter {
                 let (color, opacity) = face_paint(scene, p.face as usize, camera, fill);
                 DrawItem {
                     face: p.id,
+                    merged: Vec::new(),
                     material: scene.faces[p.face as usize].material,
                     rings: vec![pixel_ring(&samples, screen.corners(p))],
                     color,

@@ -1,0 +1,226 @@
+//! From visible pieces to drawable regions: the pieces of a group (one face, or one surface of
+//! coplanar faces with the same paint) are united into regions with holes.
+//!
+//! Invariant: the regions of a group cover the union of its pieces, up to the output rounding of
+//! their vertices (pixel coordinates rounded once, geo's union moving points by far less than a
+//! millionth of a pixel), and each region lists the input faces whose pieces lie in it.
+
+use super::coverage::bounds;
+use crate::exact::Samples;
+use crate::exact::polygon::Piece;
+use crate::project::{ScreenPoly, ScreenScene};
+use crate::scene::{FaceId, Scene, newell_normal};
+use std::cmp::Ordering;
+use std::collections::BTreeMap;
+
+/// One drawable region of a group.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Region {
+    /// Input face ids of the pieces in it, ascending, at least one.
+    pub faces: Vec<FaceId>,
+    /// Index of one of its pieces (whose face paints it).
+    pub piece: usize,
+    /// Outer ring, then holes; pixel coordinates, y down; even-odd.
+    pub rings: Vec<Vec<[f64; 2]>>,
+}
+
+/// The regions of `pieces` (disjoint), grouped by `key`: groups in key order, and within a
+/// group regions in the order of the union.
+pub fn regions<K: Ord>(
+    pieces: &[Piece],
+    screen: &ScreenScene,
+    key: impl Fn(&Piece) -> K,
+) -> Vec<Region> {
+    let s = Samples::new(screen.width, screen.height);
+    let mut groups: BTreeMap<K, Vec<usize>> = BTreeMap::new();
+    for (i, p) in pieces.iter().enumerate() {
+        groups.entry(key(p)).or_default().push(i);
+    }
+    let face_of = |i: usize| screen.polys[pieces[i].poly as usize].id;
+    let mut out = Vec::new();
+    for members in groups.into_values() {
+        let group: Vec<&Piece> = members.iter().map(|&i| &pieces[i]).collect();
+        let mut faces: Vec<FaceId> = members.iter().map(|&i| face_of(i)).collect();
+        faces.sort_unstable();
+        faces.dedup();
+        let merged = merge_rings(conforming_rings(&group, &s));
+        if faces.len() == 1 || merged.len() == 1 {
+            out.extend(merged.into_iter().map(|rings| Region {
+                faces: faces.clone(),
+                piece: members[0],
+                rings,
+            }));
+            continue;
+        }
+        // Several faces in several regions: a piece belongs to the region that holds its
+        // centroid (strictly inside a convex piece, so inside its region; f64, for labels only).
+        for rings in merged {
+            let inside: Vec<usize> = members
+                .iter()
+                .copied()
+                .filter(|&i| ring_set_contains(&rings, centroid(&pieces[i], &s)))
+                .collect();
+            let mut region_faces: Vec<FaceId> = inside.iter().map(|&i| face_of(i)).collect();
+            region_faces.sort_unstable();
+            region_faces.dedup();
+            let (faces, piece) = match inside.first() {
+                Some(&first) => (region_faces, first),
+                // Only slivers thinner than the rounding: label with the whole group.
+                None => (faces.clone(), members[0]),
+            };
+            out.push(Region {
+                faces,
+                piece,
+                rings,
+            });
+        }
+    }
+    out
+}
+
+/// A surface label per screen polygon: polygons with equal `paint` whose faces lie in one plane
+/// of the scene, to 2^-20 of the scene's size (normal and offset rounded), share a label; labels
+/// are numbered in polygon order. This is a drawing choice outside the exactness contract: it
+/// never changes which face shows where, only which abutting regions of the same paint share a
+/// path. It is not exact coplanarity on purpose: CAD files written as decimals put the triangles
+/// of one flat face a rounding error off each other's plane, and their seams would show.
+pub fn surfaces<P: Ord>(
+    scene: &Scene,
+    screen: &ScreenScene,
+    paint: impl Fn(&ScreenPoly) -> P,
+) -> Vec<u32> {
+    let size = scene
+        .bounds()
+        .map(|(lo, hi)| (hi - lo).length())
+        .filter(|s| *s > 0.0)
+        .unwrap_or(1.0);
+    let q = |v: f64| (v * (1u64 << 20) as f64).round() as i64;
+    let mut buckets: BTreeMap<(P, [i64; 4]), u32> = BTreeMap::new();
+    let mut labels = Vec::with_capacity(screen.polys.len());
+    let mut next = 0u32;
+    for poly in &screen.polys {
+        let face = &scene.faces[poly.face as usize];
+        let corners = scene.face_corners(face);
+        let n = newell_normal(corners.iter().map(|&i| scene.positions[i as usize])).normalize();
+        let d = n.dot(scene.positions[corners[0] as usize]) / size;
+        let key = (paint(poly), [q(n.x), q(n.y), q(n.z), q(d)]);
+        let label = *buckets.entry(key).or_insert_with(|| {
+            next += 1;
+            next - 1
+        });
+        labels.push(label);
+    }
+    labels
+}
+
+/// The mean of a piece's vertices, in pixels.
+fn centroid(p: &Piece, s: &Samples) -> [f64; 2] {
+    let v = p.vertices_f64();
+    let n = v.len() as f64;
+    let [x, y] = v
+        .iter()
+        .fold([0.0, 0.0], |[x, y], [a, b]| [x + a / n, y + b / n]);
+    [s.col_of(x), s.row_of(y)]
+}
+
+/// Even-odd containment of a point in a ring set.
+fn ring_set_contains(rings: &[Vec<[f64; 2]>], [px, py]: [f64; 2]) -> bool {
+    let mut inside = false;
+    for ring in rings {
+        let n = ring.len();
+        for k in 0..n {
+            let ([x0, y0], [x1, y1]) = (ring[k], ring[(k + 1) % n]);
+            if (y0 > py) != (y1 > py) && px < x0 + (py - y0) * (x1 - x0) / (y1 - y0) {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+/// The pixel rings of one group's pieces, made conforming: where a vertex of one piece lies on an
+/// edge of another (a T-junction, decided exactly), it is inserted into that edge with the very
+/// same f64 coordinates, so shared boundaries are identical segments and the union below closes
+/// them without slivers.
+fn conforming_rings(pieces: &[&Piece], s: &Samples) -> Vec<Vec<[f64; 2]>> {
+    let px = |[x, y]: [f64; 2]| [s.col_of(x), s.row_of(y)];
+    let boxes: Vec<[f64; 4]> = pieces.iter().map(|p| bounds(p)).collect();
+    pieces
+        .iter()
+        .enumerate()
+        .map(|(a, pa)| {
+            let n = pa.len();
+            let mut ring = Vec::with_capacity(n);
+            for k in 0..n {
+                let start = pa.vertex_f64(k);
+                ring.push(px(start));
+                // Vertices of other pieces strictly inside edge k (line k, between vertices k
+                // and k+1): on line k, strictly inside every other line.
+                let edge = &pa.lines[k];
+                let mut on_edge: Vec<(f64, [f64; 2])> = Vec::new();
+                for (b, pb) in pieces.iter().enumerate() {
+                    let (ba, bb) = (&boxes[a], &boxes[b]);
+                    if b == a || ba[0] > bb[2] || bb[0] > ba[2] || ba[1] > bb[3] || bb[1] > ba[3] {
+                        continue;
+                    }
+                    for v in 0..pb.len() {
+                        if pb.vertex_line_sign(v, edge) != Ordering::Equal {
+                            continue;
+                        }
+                        let inside =
+                            pa.lines.iter().enumerate().all(|(j, l)| {
+                                j == k || pb.vertex_line_sign(v, l) == Ordering::Greater
+                            });
+                        if inside {
+                            let q = pb.vertex_f64(v);
+                            let t = (q[0] - start[0]).abs() + (q[1] - start[1]).abs();
+                            on_edge.push((t, q));
+                        }
+                    }
+                }
+                on_edge.sort_by(|x, y| x.0.total_cmp(&y.0));
+                on_edge.dedup_by(|x, y| x.1 == y.1);
+                ring.extend(on_edge.into_iter().map(|(_, q)| px(q)));
+            }
+            ring
+        })
+        .collect()
+}
+
+/// The union of one group's disjoint convex rings (pixel coordinates) as regions, each an outer
+/// ring followed by its holes. geo's boolean union works in f64 on coordinates already rounded for
+/// output, and its snapping moves a point by far less than a millionth of a pixel: within the
+/// output-rounding approximation. A single ring is returned as it is.
+fn merge_rings(rings: Vec<Vec<[f64; 2]>>) -> Vec<Vec<Vec<[f64; 2]>>> {
+    use geo::{LineString, Polygon};
+    if rings.len() == 1 {
+        return vec![rings];
+    }
+    let polys: Vec<Polygon<f64>> = rings
+        .into_iter()
+        .map(|r| {
+            Polygon::new(
+                LineString::from(r.into_iter().map(|[x, y]| (x, y)).collect::<Vec<_>>()),
+                vec![],
+            )
+        })
+        .collect();
+    let merged = geo::algorithm::bool_ops::unary_union(&polys);
+    let open = |ls: &LineString<f64>| -> Vec<[f64; 2]> {
+        let mut v: Vec<[f64; 2]> = ls.coords().map(|c| [c.x, c.y]).collect();
+        // geo closes rings by repeating the first point; drawings do not.
+        if v.len() > 1 && v.first() == v.last() {
+            v.pop();
+        }
+        v
+    };
+    merged
+        .0
+        .iter()
+        .map(|poly| {
+            std::iter::once(open(poly.exterior()))
+                .chain(poly.interiors().iter().map(open))
+                .collect()
+        })
+        .collect()
+}
