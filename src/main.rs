@@ -238,6 +238,25 @@ fn run_raster(
     }
 }
 
+/// `--shading`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum ShadingArg {
+    Flat,
+    Gouraud,
+    Phong,
+}
+
+impl From<ShadingArg> for sightline::raster::lighting::Shading {
+    fn from(s: ShadingArg) -> Self {
+        use sightline::raster::lighting::Shading;
+        match s {
+            ShadingArg::Flat => Shading::Flat,
+            ShadingArg::Gouraud => Shading::Gouraud,
+            ShadingArg::Phong => Shading::Phong,
+        }
+    }
+}
+
 /// What the output file holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 enum OutputFormat {
@@ -276,6 +295,24 @@ struct RenderArgs {
     /// Also write the depth buffer as 16-bit grey PNG (0 near, 65535 far and background).
     #[arg(long, value_name = "FILE.png")]
     depth: Option<PathBuf>,
+    /// Add a white directional light shining from direction x,y,z (world space) towards the
+    /// scene; repeat for more. The headlight stays unless --no-headlight.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    light: Vec<DVec3>,
+    /// No light along the view direction.
+    #[arg(long)]
+    no_headlight: bool,
+    /// Phong specular coefficient Ks (0 = matte); flat fills take each face's highlight at its
+    /// centroid.
+    #[arg(long, value_name = "KS", default_value_t = 0.0)]
+    specular: f64,
+    /// Phong exponent n of the highlight.
+    #[arg(long, value_name = "N", default_value_t = 32.0)]
+    shininess: f64,
+    /// How light varies across a face in image-space output (zbuffer, scanline, warnock):
+    /// flat (one colour per face), gouraud (corners, interpolated) or phong (per pixel).
+    #[arg(long, value_enum, default_value_t = ShadingArg::Flat)]
+    shading: ShadingArg,
     /// Print timings and counters to stderr.
     #[arg(long)]
     stats: bool,
@@ -523,9 +560,47 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             "--depth needs --method zbuffer".into(),
         ));
     }
+    if a.shading != ShadingArg::Flat
+        && !matches!(
+            a.method,
+            Method::Zbuffer | Method::Scanline | Method::Warnock
+        )
+    {
+        return Err(sightline::Error::Output(format!(
+            "--shading {} needs --method zbuffer, scanline or warnock ({} draws flat colours)",
+            clap::ValueEnum::to_possible_value(&a.shading)
+                .map(|v| v.get_name().to_string())
+                .unwrap_or_default(),
+            a.method.name()
+        )));
+    }
+    for (name, v) in [("--specular", a.specular), ("--shininess", a.shininess)] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(sightline::Error::Output(format!(
+                "{name} must be a finite number >= 0, not {v}"
+            )));
+        }
+    }
     let t0 = Instant::now();
-    let scene = load_scene(&a.input)?;
+    let mut scene = load_scene(&a.input)?;
     let t_load = t0.elapsed();
+    scene.lights.headlight = !a.no_headlight;
+    scene.lights.specular = a.specular;
+    scene.lights.shininess = a.shininess;
+    for l in &a.light {
+        if *l == DVec3::ZERO {
+            return Err(sightline::Error::Output(
+                "--light 0,0,0 has no direction".into(),
+            ));
+        }
+        scene
+            .lights
+            .lights
+            .push(sightline::scene::Light::Directional {
+                direction: -*l,
+                intensity: [1.0; 3],
+            });
+    }
     let camera = camera_for(&a.camera, &scene)?;
     let t1 = Instant::now();
     let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
@@ -542,11 +617,34 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             a.background,
             a.depth.is_some(),
         );
+        use sightline::raster::lighting;
+        let textured = scene.material_textures.iter().any(Option::is_some);
         let image = match r.blended {
             Some(colors) => colors
                 .into_iter()
                 .map(sightline::raster::shade::to_u8)
                 .collect(),
+            // Per-pixel lighting or textures: the ray through each pixel centre.
+            None if a.fill == Fill::Shade && (a.shading != ShadingArg::Flat || textured) => {
+                let textures = lighting::Textures::load(&scene);
+                for w in &textures.warnings {
+                    eprintln!("warning: {w}");
+                }
+                lighting::shade_polys(
+                    &scene,
+                    &prepared.screen,
+                    &r.poly,
+                    camera.width,
+                    &camera,
+                    &lighting::Lighting::of_scene(&scene, &camera),
+                    a.shading.into(),
+                    &textures,
+                    a.background.map(|c| c as f64 / 255.0),
+                )
+                .into_iter()
+                .map(sightline::raster::shade::to_u8)
+                .collect()
+            }
             None => pipeline::colorize_polys(
                 &scene,
                 &prepared.screen,

@@ -447,3 +447,95 @@ fn closed_standard_output_is_not_a_panic() {
     assert!(!err.contains("panicked"), "{err}");
     assert!(status.success(), "{status:?}: {err}");
 }
+
+/// `--light` adds a light (both spellings of a negative value), `--specular` adds highlights,
+/// and each changes the SVG's fills; bad values and `--shading` on a flat method are errors.
+#[test]
+fn lights_and_specular_change_the_fills() {
+    let dir = tempfile::tempdir().unwrap();
+    let fills = |extra: &[&str]| -> Vec<String> {
+        let out = dir.path().join("x.svg");
+        let mut args = vec!["render", "fixtures/cube.obj", "--method", "bsp", "-o"];
+        args.push(out.to_str().unwrap());
+        args.extend_from_slice(extra);
+        let o = sightline(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let svg = std::fs::read_to_string(&out).unwrap();
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        doc.descendants()
+            .filter(|n| n.has_tag_name("path"))
+            .map(|n| n.attribute("fill").unwrap().to_string())
+            .collect()
+    };
+    let plain = fills(&[]);
+    let lit = fills(&["--light", "-1,0.5,0.2"]);
+    assert_eq!(lit, fills(&["--light=-1,0.5,0.2"]));
+    assert_ne!(plain, lit);
+    // The headlight's mirror direction is the view: a face seen head-on takes the highlight (the
+    // iso view's faces, 55° off, reflect it away).
+    assert_ne!(
+        fills(&["--view", "front"]),
+        fills(&["--view", "front", "--specular", "0.5"])
+    );
+    // Without any light only the ambient term is left: darker in every channel, and the same
+    // on faces of one material whatever their direction (the two red faces).
+    let dark = fills(&["--no-headlight"]);
+    let rgb = |h: &str| {
+        (0..3)
+            .map(|k| u8::from_str_radix(&h[1 + 2 * k..3 + 2 * k], 16).unwrap())
+            .collect::<Vec<_>>()
+    };
+    for (d, p) in dark.iter().zip(&plain) {
+        assert!(
+            rgb(d).iter().zip(rgb(p)).all(|(a, b)| *a <= b),
+            "{d} vs {p}"
+        );
+    }
+    assert_ne!(dark, plain);
+    assert_eq!(plain[0], plain[1], "the cube's two red faces");
+    assert_eq!(dark[0], dark[1]);
+    for bad in [
+        &["--specular", "-1"][..],
+        &["--light", "0,0,0"],
+        &["--shading", "phong"],
+    ] {
+        let mut args = vec![
+            "render",
+            "fixtures/cube.obj",
+            "--method",
+            "bsp",
+            "-o",
+            "x.svg",
+        ];
+        args.extend_from_slice(bad);
+        let o = sightline(&args);
+        assert!(!o.status.success(), "{bad:?} accepted");
+        assert!(!String::from_utf8_lossy(&o.stderr).contains("panicked"));
+    }
+}
+
+/// Phong and Gouraud shading smooth a sphere's facets in the PNG: fewer distinct colours than
+/// flat shading has faces would give, and different images.
+#[test]
+fn shading_modes_change_the_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let render = |mode: &str| -> Vec<u8> {
+        let out = dir.path().join(format!("{mode}.png"));
+        let o = sightline(&[
+            "render",
+            "fixtures/primitives.x3d",
+            "--shading",
+            mode,
+            "--size",
+            "64x48",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        image::open(&out).unwrap().to_rgb8().into_raw()
+    };
+    let (flat, gouraud, phong) = (render("flat"), render("gouraud"), render("phong"));
+    assert_ne!(flat, gouraud);
+    assert_ne!(flat, phong);
+    assert_ne!(gouraud, phong);
+}

@@ -74,6 +74,8 @@ fn grid_seeds(format: Format) -> Vec<Vec<u8>> {
             for v in &verts {
                 s += &format!("v {} {} {}\n", v[0], v[1], v[2]);
             }
+            // The texture coordinate and the normals the faces below refer to.
+            s += "vt 0.5 0.5\nvn 0 0 1\nvn 0 1 0\n";
             for (k, q) in quads.iter().enumerate() {
                 if k % 2 == 0 {
                     s += &format!("f {} {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1);

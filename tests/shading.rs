@@ -226,7 +226,11 @@ fn flat_through_lighting_is_the_flat_renderer() {
         &prep.screen,
         &zb,
         &cam,
-        &Lighting::headlight(&cam),
+        // Flat and matte, as `flat_color` under the default lights.
+        &Lighting {
+            specular: 0.0,
+            ..Lighting::headlight(&cam)
+        },
         Shading::Flat,
         &Textures::load(&scene),
         [0.0; 3],
@@ -271,8 +275,11 @@ fn gouraud_and_phong_on_a_sphere() {
             [0.0; 3],
         )
     };
+    let matte_render =
+        |s| shade_zbuffer(&scene, &prep.screen, &zb, &cam, &matte, s, &tex, [0.0; 3]);
+    // Flat with Ks > 0 adds each face's highlight at its centroid; compare with flat matte.
     let (flat, gouraud, phong) = (
-        render(Shading::Flat),
+        matte_render(Shading::Flat),
         render(Shading::Gouraud),
         render(Shading::Phong),
     );
@@ -297,8 +304,6 @@ fn gouraud_and_phong_on_a_sphere() {
         m
     };
     // Without the (sharp, n = 32) highlight, the smooth shadings have no facet steps.
-    let matte_render =
-        |s| shade_zbuffer(&scene, &prep.screen, &zb, &cam, &matte, s, &tex, [0.0; 3]);
     let (mf, mg, mp) = (
         matte_render(Shading::Flat),
         matte_render(Shading::Gouraud),
@@ -346,7 +351,11 @@ fn render_checker(size: u32) -> Vec<[f64; 3]> {
         &prep.screen,
         &zb,
         &cam,
-        &Lighting::headlight(&cam),
+        // Flat and matte, as `flat_color` under the default lights.
+        &Lighting {
+            specular: 0.0,
+            ..Lighting::headlight(&cam)
+        },
         Shading::Flat,
         &textures,
         [0.0; 3],

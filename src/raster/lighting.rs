@@ -7,9 +7,10 @@
 //! S points to the eye. Lights add linearly (seed 004).
 //!
 //! Shading (the same pixel always gets the same colour whatever the order faces are drawn in):
-//! - **Flat**: ambient + diffuse only (the seed's "tonalização constante"), face normal, evaluated
-//!   at the face's centroid: one colour per face (times the texture). With the default headlight
-//!   it equals [`super::shade::flat_color`].
+//! - **Flat**: the model at the face's centroid with the face normal: one colour per face (times
+//!   the texture); ambient + diffuse only (the seed's "tonalização constante") unless Ks > 0,
+//!   then the centroid's highlight too (SVG fills use the same, [`Lighting::flat_color`]). With
+//!   the default headlight and Ks = 0 it equals [`super::shade::flat_color`].
 //! - **Gouraud**: ambient + diffuse + specular evaluated at the corners with the vertex normals,
 //!   then the light terms interpolated perspective-correctly to the pixel.
 //! - **Phong**: the vertex normals interpolated (perspective-correctly) and renormalized, the
@@ -33,20 +34,7 @@ use std::collections::HashMap;
 /// Faces meeting at a position are smoothed together when their normals differ by at most this.
 pub const CREASE_DEGREES: f64 = 60.0;
 
-/// A light source of intensity `intensity` (RGB).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Light {
-    /// At infinity; `direction` is where its light travels (need not be unit).
-    Directional {
-        direction: DVec3,
-        intensity: [f64; 3],
-    },
-    /// At a point, no attenuation (seed 004's simple model).
-    Point {
-        position: DVec3,
-        intensity: [f64; 3],
-    },
-}
+pub use crate::scene::Light;
 
 /// The coefficients and the lights.
 #[derive(Clone, Debug, PartialEq)]
@@ -76,6 +64,38 @@ impl Lighting {
                 intensity: [1.0; 3],
             }],
         }
+    }
+
+    /// The scene's lights (`scene.lights`) as seen by `camera`: the headlight if on, then the
+    /// others, Ka and Kd of the flat renderer, the scene's Ks and n.
+    pub fn of_scene(scene: &Scene, camera: &Camera) -> Lighting {
+        let l = &scene.lights;
+        let mut lights = Vec::with_capacity(l.lights.len() + 1);
+        if l.headlight {
+            lights.push(Light::Directional {
+                direction: camera.forward(),
+                intensity: [1.0; 3],
+            });
+        }
+        lights.extend(l.lights.iter().copied());
+        Lighting {
+            ambient: super::shade::AMBIENT,
+            diffuse: super::shade::DIFFUSE,
+            specular: l.specular,
+            shininess: l.shininess,
+            lights,
+        }
+    }
+
+    /// The flat colour of a face: the model at its centroid with its normal, specular included
+    /// when Ks > 0 (seen from the camera's eye).
+    pub fn flat_color(&self, scene: &Scene, face: &crate::scene::Face, eye: DVec3) -> [f64; 3] {
+        let m = &scene.materials[face.material as usize];
+        let n = scene.face_normal(face);
+        let k = face.len as f64;
+        let centroid = scene.face_positions(face).sum::<DVec3>() / k;
+        let (lit, spec) = self.terms(n, centroid, eye, self.specular > 0.0);
+        combine(m.diffuse, m.emissive, lit, spec)
     }
 
     /// The light at `point` with normal `normal` seen from `eye`: the factor that multiplies
@@ -290,6 +310,25 @@ pub fn shade_zbuffer(
     textures: &Textures,
     background: [f64; 3],
 ) -> Vec<[f64; 3]> {
+    shade_polys(
+        scene, screen, &zb.poly, zb.width, camera, lighting, shading, textures, background,
+    )
+}
+
+/// [`shade_zbuffer`] for any per-pixel polygon index (row-major, `width` wide, [`EMPTY`] for
+/// background): the scanline's and Warnock's results shade the same way.
+#[allow(clippy::too_many_arguments)]
+pub fn shade_polys(
+    scene: &Scene,
+    screen: &ScreenScene,
+    poly: &[u32],
+    width: u32,
+    camera: &Camera,
+    lighting: &Lighting,
+    shading: Shading,
+    textures: &Textures,
+    background: [f64; 3],
+) -> Vec<[f64; 3]> {
     let normals = match shading {
         Shading::Flat => Vec::new(),
         _ => vertex_normals(scene),
@@ -298,10 +337,9 @@ pub fn shade_zbuffer(
     let eye = camera.eye;
     // Per face, computed on first use: flat light terms.
     let mut flat: HashMap<u32, ([f64; 3], [f64; 3])> = HashMap::new();
-    let w = zb.width as usize;
+    let w = width as usize;
     let mut pts: Vec<DVec3> = Vec::new();
-    zb.poly
-        .iter()
+    poly.iter()
         .enumerate()
         .map(|(idx, &p)| {
             if p == EMPTY {
@@ -353,8 +391,9 @@ pub fn shade_zbuffer(
 }
 
 fn flat_terms(lighting: &Lighting, pts: &[DVec3], n: DVec3, eye: DVec3) -> ([f64; 3], [f64; 3]) {
+    // As `Lighting::flat_color`: the specular term only when Ks > 0.
     let centroid = pts.iter().copied().sum::<DVec3>() / pts.len() as f64;
-    lighting.terms(n, centroid, eye, false)
+    lighting.terms(n, centroid, eye, lighting.specular > 0.0)
 }
 
 /// The material's diffuse colour times the texture at the hit, if there is one.

@@ -11,9 +11,14 @@ pub const AMBIENT: f64 = 0.2;
 /// Diffuse (Lambert) coefficient of the headlight.
 pub const DIFFUSE: f64 = 0.8;
 
-/// Flat colour (linear RGB, clamped to [0,1]) of `scene.faces[face]` seen by `camera`.
+/// Flat colour (linear RGB, clamped to [0,1]) of `scene.faces[face]` seen by `camera`, under
+/// the scene's lights: with the default (the headlight alone, no specular) the formula above;
+/// otherwise the full model of [`super::lighting`] at the face's centroid.
 pub fn flat_color(scene: &Scene, face: usize, camera: &Camera) -> [f64; 3] {
     let f = &scene.faces[face];
+    if scene.lights != crate::scene::SceneLights::default() {
+        return super::lighting::Lighting::of_scene(scene, camera).flat_color(scene, f, camera.eye);
+    }
     let m = &scene.materials[f.material as usize];
     let n = scene.face_normal(f).normalize_or_zero();
     let light = AMBIENT + DIFFUSE * n.dot(-camera.forward()).abs();

@@ -127,6 +127,48 @@ pub struct Scene {
     /// `materials`; a material past its end has none. Paths are resolved against the file's
     /// directory; the image is read only when rendering.
     pub material_textures: Vec<Option<PathBuf>>,
+    /// The lights the scene is seen under (`--light`, `--specular`): every shaded method uses
+    /// them (see `raster::lighting::Lighting::of_scene`).
+    pub lights: SceneLights,
+}
+
+/// A light source of intensity `intensity` (RGB).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// At infinity; `direction` is where its light travels (need not be unit).
+    Directional {
+        direction: DVec3,
+        intensity: [f64; 3],
+    },
+    /// At a point, no attenuation (seed 004's simple model).
+    Point {
+        position: DVec3,
+        intensity: [f64; 3],
+    },
+}
+
+/// How a scene is lit: the seed 004 model's lights and its specular term.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneLights {
+    /// A white directional light along the view direction, whatever the camera.
+    pub headlight: bool,
+    /// Lights besides the headlight.
+    pub lights: Vec<Light>,
+    /// Phong specular coefficient Ks (0: none, the default for flat fills).
+    pub specular: f64,
+    /// Phong exponent n.
+    pub shininess: f64,
+}
+
+impl Default for SceneLights {
+    fn default() -> Self {
+        SceneLights {
+            headlight: true,
+            lights: Vec::new(),
+            specular: 0.0,
+            shininess: 32.0,
+        }
+    }
 }
 
 impl Scene {
