@@ -371,6 +371,12 @@ struct BenchArgs {
 enum BenchMethod {
     /// The exact z-buffer.
     Zbuffer,
+    /// The A-buffer (flat paints, translucency blended).
+    Abuffer,
+    /// Watkins scanline.
+    Scanline,
+    /// Warnock area subdivision.
+    Warnock,
     /// The exact visible set, as `render --method bsp` computes it for opaque scenes.
     Bsp,
     /// The exact visible set through the full 3D BSP walked front to back (the painter order
@@ -837,6 +843,28 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
                     zb.stats.fragments, zb.stats.column_fallbacks, zb.stats.depth_fallbacks
                 )
             }
+            BenchMethod::Abuffer => {
+                use sightline::raster::abuffer;
+                let paints = abuffer::paints(&scene, &prepared.screen, &camera, Fill::Shade);
+                let ab = abuffer::render(
+                    &prepared.screen,
+                    &paints,
+                    [1.0; 3],
+                    abuffer::Options::default(),
+                );
+                method_times.push(t.elapsed().as_secs_f64());
+                format!("{:?}", ab.stats)
+            }
+            BenchMethod::Scanline => {
+                let r = sightline::raster::scanline::render(&prepared.screen);
+                method_times.push(t.elapsed().as_secs_f64());
+                format!("{:?}", r.stats)
+            }
+            BenchMethod::Warnock => {
+                let r = sightline::raster::warnock::render(&prepared.screen);
+                method_times.push(t.elapsed().as_secs_f64());
+                format!("{:?}", r.stats)
+            }
             BenchMethod::Bsp => {
                 let (visible, cs) = sightline::visibility::bsp::visible_set(&prepared.screen);
                 method_times.push(t.elapsed().as_secs_f64());
@@ -893,6 +921,9 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
     }
     let name = match a.method {
         BenchMethod::Zbuffer => "z-buffer",
+        BenchMethod::Abuffer => "a-buffer",
+        BenchMethod::Scanline => "scanline",
+        BenchMethod::Warnock => "warnock",
         BenchMethod::Bsp => "bsp",
         BenchMethod::BspTree => "bsp-tree",
     };
