@@ -7,7 +7,8 @@ use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use proptest::prelude::*;
 use sightline::exact::predicates::{
-    Crossing, Line, depth_order_at, fallback_count, line_side, meet_side, orient2d, segments_cross,
+    Crossing, Line, crossing_with_error, depth_order_at, fallback_count, line_side, meet_side,
+    orient2d, segments_cross,
 };
 use sightline::exact::{GRID_MAX, GridPoint, Plane};
 use std::cmp::Ordering;
@@ -242,6 +243,50 @@ proptest! {
             }
         };
         prop_assert_eq!(segments_cross(p0, p1, q0, q1), reference);
+    }
+}
+
+/// The point filter: a crossing's f64 point with its error bound (`crossing_with_error`), tested
+/// against a line's f64 coefficients (`LineApprox::sign_at`): the bound must hold, and every
+/// sign it gives must be the exact one.
+fn check_point_filter(l0: &Line, l1: &Line, l2: &Line) -> Result<bool, TestCaseError> {
+    let Some(([x, y], e)) = crossing_with_error(l0, l1) else {
+        return Ok(false);
+    };
+    let (rx, ry) = crossing([l0, l1]).expect("a bounded crossing exists");
+    let within = |v: f64, r: &Q| {
+        let v = Q::from_float(v).unwrap();
+        let e = Q::from_float(e).unwrap();
+        (&v - r).abs() <= e
+    };
+    prop_assert!(
+        within(x, &rx) && within(y, &ry),
+        "crossing bound {e} does not hold"
+    );
+    let decided = l2.approx().sign_at([x, y, e]);
+    if let Some(s) = decided {
+        prop_assert_eq!(Some(s), line_reference([l0, l1], l2));
+    }
+    Ok(decided.is_some())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 3000, ..ProptestConfig::default() })]
+
+    #[test]
+    fn point_filter_random(a in any_plane(), b in any_plane(), c in any_plane(), d in any_plane(), e in any_plane(), f in any_plane()) {
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::Cut(p, r) };
+        check_point_filter(&line(a, b), &line(c, d), &line(e, f))?;
+    }
+
+    #[test]
+    fn point_filter_through_a_common_point(
+        (a, b, c, d, e, f) in point().prop_flat_map(|g| (plane_through(g), plane_through(g), plane_through(g), plane_through(g), plane_through(g), query_near(g)))
+    ) {
+        // The third line passes through the crossing or one unit off it: the filter must
+        // abstain or be right.
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::Cut(p, r) };
+        check_point_filter(&line(a, b), &line(c, d), &line(e, f))?;
     }
 }
 

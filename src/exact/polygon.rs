@@ -14,14 +14,14 @@
 //! (BSP splitting, coverage) then needs only the convex split.
 
 use super::predicates::{
-    Line, crossing_f64, depth_order_at, depth_order_filtered, line_side, line_side_filtered,
-    meet_side,
+    Line, LineApprox, crossing_f64, crossing_with_error, depth_order_at, depth_order_filtered,
+    line_side, line_side_filtered, meet_side,
 };
 use super::{GridPoint, Plane};
 use std::cmp::Ordering;
 
 /// A convex piece of a face. See the module docs.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Piece {
     /// Index of the screen polygon (face) it belongs to.
     pub poly: u32,
@@ -35,10 +35,17 @@ pub struct Piece {
     pub segments: Vec<Option<[[i32; 2]; 2]>>,
     /// The grid bounds (x0, y0, x1, y1) of the face's polygon, exact: every part lies inside.
     pub frame: [i32; 4],
+    /// Vertex k in f64 grid coordinates with a proven error bound, (x, y, e): the exact vertex
+    /// is within e of (x, y) in each coordinate (e = 0 at grid corners, infinite where the
+    /// crossing is too ill-conditioned to bound). Computed once when the vertex is made: sign
+    /// tests against many lines then cost a dot product each ([`LineApprox::sign_at`]).
+    pub points: Vec<[f64; 3]>,
+    /// `lines[k].approx()`, computed once: other pieces are tested against these lines.
+    pub line_approx: Vec<LineApprox>,
 }
 
 /// Where a piece lies relative to a plane or a line.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 #[allow(clippy::large_enum_variant)] // returned once per split and taken apart at once
 pub enum Split {
     /// Entirely on the negative side (touching allowed).
@@ -67,7 +74,7 @@ impl Piece {
             .collect();
         let corners = &corners[..];
         let n = corners.len();
-        let lines = (0..n)
+        let lines: Vec<Line> = (0..n)
             .map(|k| {
                 Line::Edge(
                     Plane::edge(corners[k], corners[(k + 1) % n])
@@ -87,7 +94,12 @@ impl Piece {
             .fold([i32::MAX, i32::MAX, i32::MIN, i32::MIN], |f, c| {
                 [f[0].min(c.x), f[1].min(c.y), f[2].max(c.x), f[3].max(c.y)]
             });
+        let points = corners
+            .iter()
+            .map(|c| [c.x as f64, c.y as f64, 0.0])
+            .collect();
         let corners = corners.iter().map(|c| Some([c.x, c.y])).collect();
+        let line_approx = lines.iter().map(Line::approx).collect();
         Piece {
             poly,
             support,
@@ -95,6 +107,8 @@ impl Piece {
             corners,
             segments,
             frame,
+            points,
+            line_approx,
         }
     }
 
@@ -140,9 +154,18 @@ impl Piece {
 
     /// The sign of plane `q` at vertex k (lifted onto the support plane). `q.c > 0`.
     pub fn vertex_plane_sign(&self, k: usize, q: &Plane) -> Ordering {
+        self.vertex_plane_sign_with(k, q, &Line::Cut(*q, self.support).approx())
+    }
+
+    /// [`Self::vertex_plane_sign`] given `Cut(q, support)`'s f64 coefficients: on the support
+    /// plane, q has the sign of that screen line (`c_S·q - c_q·S`, divided by `c_S > 0`).
+    fn vertex_plane_sign_with(&self, k: usize, q: &Plane, qa: &LineApprox) -> Ordering {
         if let Some([x, y]) = self.corners[k]
             && let Some(s) = grid_vertex_plane_sign(&self.support, x, y, q)
         {
+            return s;
+        }
+        if let Some(s) = qa.sign_at(self.points[k]) {
             return s;
         }
         // Most signs are far from zero: the f64 filter settles them before any shortcut.
@@ -180,19 +203,29 @@ impl Piece {
 
     /// The sign of line `l` at vertex k.
     pub fn vertex_line_sign(&self, k: usize, l: &Line) -> Ordering {
+        self.vertex_line_sign_with(k, l, &l.approx())
+    }
+
+    /// [`Self::vertex_line_sign`] with `l`'s f64 coefficients computed once by the caller.
+    fn vertex_line_sign_with(&self, k: usize, l: &Line, la: &LineApprox) -> Ordering {
         if let Some([x, y]) = self.corners[k]
             && let Some(sign) = l.sign_at_grid(x, y)
         {
             return sign;
         }
-        // Most signs are far from zero: the f64 filter settles them before any shortcut.
-        let [a, b] = self.vertex_lines(k);
-        if let Some(sign) = line_side_filtered([a, b], l) {
+        // The cached point and its error bound: one dot product settles most signs.
+        if let Some(sign) = la.sign_at(self.points[k]) {
             return sign;
         }
         // A vertex lies on the lines that define it: no arithmetic needed.
+        let [a, b] = self.vertex_lines(k);
         if a == l || b == l || *a == negate(l) || *b == negate(l) {
             return Ordering::Equal;
+        }
+        // The determinant's filter, tighter than the point's where the crossing is
+        // ill-conditioned.
+        if let Some(sign) = line_side_filtered([a, b], l) {
+            return sign;
         }
         // A cut line c_Q·P - c_P·Q has no z term: its sign at the vertex is its sign at any 3D
         // point above it. At a point on Q it is the sign of P there (c_Q > 0), on P the opposite
@@ -243,12 +276,18 @@ impl Piece {
         if same_plane(&self.support, q) {
             return (false, false);
         }
-        self.sides(|k| self.vertex_plane_sign(k, q))
+        let qa = Line::Cut(*q, self.support).approx();
+        self.sides(|k| self.vertex_plane_sign_with(k, q, &qa))
     }
 
     /// As [`Self::sides_of_plane`], for a screen line.
     pub fn sides_of_line(&self, l: &Line) -> (bool, bool) {
-        self.sides(|k| self.vertex_line_sign(k, l))
+        self.sides_of_line_with(l, &l.approx())
+    }
+
+    /// [`Self::sides_of_line`] with `l.approx()` given (a piece keeps its lines').
+    pub fn sides_of_line_with(&self, l: &Line, la: &LineApprox) -> (bool, bool) {
+        self.sides(|k| self.vertex_line_sign_with(k, l, la))
     }
 
     fn sides(&self, sign: impl Fn(usize) -> Ordering) -> (bool, bool) {
@@ -271,8 +310,9 @@ impl Piece {
         if same_plane(&self.support, q) {
             return Split::On;
         }
+        let qa = Line::Cut(*q, self.support).approx();
         let signs: Vec<Ordering> = (0..self.len())
-            .map(|k| self.vertex_plane_sign(k, q))
+            .map(|k| self.vertex_plane_sign_with(k, q, &qa))
             .collect();
         // On the support plane, Cut(S, Q) = c_Q·S - c_S·Q has the sign of -Q: positive on the
         // negative part's inside.
@@ -285,8 +325,13 @@ impl Piece {
 
     /// Splits by a screen line: the negative part is where `l` is negative.
     pub fn split_by_line(&self, l: &Line) -> Split {
+        self.split_by_line_with(l, &l.approx())
+    }
+
+    /// [`Self::split_by_line`] with `l.approx()` given (a piece keeps its lines').
+    pub fn split_by_line_with(&self, l: &Line, la: &LineApprox) -> Split {
         let signs: Vec<Ordering> = (0..self.len())
-            .map(|k| self.vertex_line_sign(k, l))
+            .map(|k| self.vertex_line_sign_with(k, l, la))
             .collect();
         self.split_with(&signs, negate(l), *l)
     }
@@ -338,6 +383,8 @@ impl Piece {
         let last = (run[run.len() - 1] + 1) % n;
         let mut lines: Vec<Line> = run.iter().map(|&k| self.lines[k]).collect();
         lines.push(closing);
+        let mut line_approx: Vec<LineApprox> = run.iter().map(|&k| self.line_approx[k]).collect();
+        line_approx.push(closing.approx());
         let mut segments: Vec<Option<[[i32; 2]; 2]>> =
             run.iter().map(|&k| self.segments[k]).collect();
         segments.push(None);
@@ -347,6 +394,19 @@ impl Piece {
         corners.push(end_corner(start, start));
         corners.extend(run[1..].iter().map(|&k| self.corners[k]));
         corners.push(end_corner(last, run[run.len() - 1]));
+        let end_point = |v: usize, corner: Option<[i32; 2]>, kept: usize| match corner {
+            _ if signs[v] == Ordering::Equal => self.points[v],
+            Some([x, y]) => [x as f64, y as f64, 0.0],
+            None => point_of(&closing, &self.lines[kept]),
+        };
+        let mut points = Vec::with_capacity(lines.len());
+        points.push(end_point(start, corners[0], start));
+        points.extend(run[1..].iter().map(|&k| self.points[k]));
+        points.push(end_point(
+            last,
+            corners[corners.len() - 1],
+            run[run.len() - 1],
+        ));
         Piece {
             poly: self.poly,
             support: self.support,
@@ -354,6 +414,8 @@ impl Piece {
             corners,
             segments,
             frame: self.frame,
+            points,
+            line_approx,
         }
     }
 
@@ -363,22 +425,15 @@ impl Piece {
     pub fn bounds(&self) -> [f64; 4] {
         let f = self.frame.map(|v| v as f64);
         let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
-        for k in 0..self.len() {
-            let (p, e) = match self.corners[k] {
-                Some([x, y]) => ([x as f64, y as f64], 0.0),
-                None => {
-                    let [a, c] = self.vertex_lines(k);
-                    match super::predicates::crossing_with_error(a, c) {
-                        Some(pe) => pe,
-                        None => return f,
-                    }
-                }
-            };
+        for &[x, y, e] in &self.points {
+            if !e.is_finite() {
+                return f;
+            }
             b = [
-                b[0].min(p[0] - e),
-                b[1].min(p[1] - e),
-                b[2].max(p[0] + e),
-                b[3].max(p[1] + e),
+                b[0].min(x - e),
+                b[1].min(y - e),
+                b[2].max(x + e),
+                b[3].max(y + e),
             ];
         }
         // Both boxes contain the piece: so does their intersection.
@@ -392,18 +447,25 @@ impl Piece {
 
     /// Vertex k in f64 grid coordinates (rounded: for output and bounds, never decisions).
     pub fn vertex_f64(&self, k: usize) -> [f64; 2] {
-        match self.corners[k] {
-            Some([x, y]) => [x as f64, y as f64],
-            None => {
-                let [a, b] = self.vertex_lines(k);
-                crossing_f64(a, b)
-            }
-        }
+        let [x, y, _] = self.points[k];
+        [x, y]
     }
 
     /// The vertices in f64 grid coordinates (rounded once each: for output only).
     pub fn vertices_f64(&self) -> Vec<[f64; 2]> {
         (0..self.len()).map(|k| self.vertex_f64(k)).collect()
+    }
+}
+
+/// Where two lines cross with its error bound, as [`Piece::points`] holds it. The f64 point is
+/// `crossing_f64`'s (the same bits whatever the order of the lines).
+fn point_of(l: &Line, m: &Line) -> [f64; 3] {
+    match crossing_with_error(l, m) {
+        Some(([x, y], e)) => [x, y, e],
+        None => {
+            let [x, y] = crossing_f64(l, m);
+            [x, y, f64::INFINITY]
+        }
     }
 }
 
@@ -430,7 +492,9 @@ fn grid_crossing(l: &Line, m: &Line) -> Option<[i32; 2]> {
 /// entirely on its outer side (touching allowed); for convex polygons such a line exists
 /// whenever they do not overlap.
 pub fn separated(p: &Piece, q: &Piece) -> bool {
-    let outside = |a: &Piece, b: &Piece| a.lines.iter().any(|l| !b.sides_of_line(l).1);
+    let outside = |a: &Piece, b: &Piece| {
+        (a.lines.iter().zip(&a.line_approx)).any(|(l, la)| !b.sides_of_line_with(l, la).1)
+    };
     outside(q, p) || outside(p, q)
 }
 

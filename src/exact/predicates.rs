@@ -52,6 +52,46 @@ pub enum Line {
     Cut(Plane, Plane),
 }
 
+/// A line's coefficients in f64 with their error bounds, for testing many points against it:
+/// `|A - a| <= ea`, `|B - b| <= eb`, `|D - d| <= ed` for the exact coefficients (A, B, D).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LineApprox {
+    a: f64,
+    b: f64,
+    d: f64,
+    ea: f64,
+    eb: f64,
+    ed: f64,
+}
+
+impl LineApprox {
+    /// The sign of the line at a point known to within `e` in x and y (`|X - x|, |Y - y| <= e`),
+    /// when the f64 evaluation proves it; never `Equal`.
+    ///
+    /// `V - (a·x + b·y + d) = (A·X - a·x) + (B·Y - b·y) + (D - d)`, and
+    /// `|A·X - a·x| <= ea·(|x| + e) + |a|·e`; evaluating `a·x + b·y + d` in f64 errs by at most
+    /// `3·U·(|a·x| + |b·y| + |d|)` (to first order; the bound is widened by 1% for the rest and
+    /// for its own rounding).
+    #[inline]
+    pub fn sign_at(&self, [x, y, e]: [f64; 3]) -> Option<Ordering> {
+        let (ax, by) = (self.a * x, self.b * y);
+        let v = ax + by + self.d;
+        let bound = self.ea * (x.abs() + e)
+            + self.eb * (y.abs() + e)
+            + (self.a.abs() + self.b.abs()) * e
+            + self.ed
+            + 3.0 * U * (ax.abs() + by.abs() + self.d.abs());
+        let bound = bound * 1.01;
+        if v > bound {
+            Some(Ordering::Greater)
+        } else if v < -bound {
+            Some(Ordering::Less)
+        } else {
+            None
+        }
+    }
+}
+
 /// One coefficient, three ways: f64 value, f64 magnitude bound, and exact.
 #[derive(Clone, Copy)]
 struct Entry {
@@ -79,6 +119,20 @@ impl Line {
                     combine(p.d as f64, q.d as f64),
                 ]
             }
+        }
+    }
+
+    /// The f64 coefficients with error bounds (each below `3·U·M`, see the module docs).
+    pub fn approx(&self) -> LineApprox {
+        let [a, b, d] = self.filtered();
+        let e = |c: Entry| 3.0 * U * c.magnitude;
+        LineApprox {
+            a: a.value,
+            b: b.value,
+            d: d.value,
+            ea: e(a),
+            eb: e(b),
+            ed: e(d),
         }
     }
 

@@ -310,8 +310,8 @@ pub(crate) fn subtract(piece: Piece, front: &Piece, out: &mut Vec<Piece>) {
         return;
     }
     let mut inside = piece;
-    for line in &front.lines {
-        match inside.split_by_line(line) {
+    for (line, approx) in front.lines.iter().zip(&front.line_approx) {
+        match inside.split_by_line_with(line, approx) {
             // Entirely outside this line of `front`: nothing of it is hidden.
             Split::Negative => {
                 out.push(inside);
