@@ -273,7 +273,10 @@ fn collinear(a: DVec3, b: DVec3, c: DVec3) -> bool {
 
 /// Positions in `corners` of three points that are not collinear, chosen exactly; `None` when the
 /// polygon is degenerate.
-pub(crate) fn non_collinear_triple(pos: &[DVec3], corners: &[u32]) -> Option<(usize, usize, usize)> {
+pub(crate) fn non_collinear_triple(
+    pos: &[DVec3],
+    corners: &[u32],
+) -> Option<(usize, usize, usize)> {
     if corners.len() < 3 {
         return None;
     }
