@@ -74,15 +74,29 @@ fn grid_seeds(format: Format) -> Vec<Vec<u8>> {
             for v in &verts {
                 s += &format!("v {} {} {}\n", v[0], v[1], v[2]);
             }
-            // The texture coordinate and the normals the faces below refer to.
-            s += "vt 0.5 0.5\nvn 0 0 1\nvn 0 1 0\n";
+            // What the odd faces' `/1` and `//2` refer to.
+            s += "vt 0 0\nvt 1 0 0\nvn 0 0 1\nvn 0.1 0 1\n";
             for (k, q) in quads.iter().enumerate() {
-                if k % 2 == 0 {
-                    s += &format!("f {} {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1);
-                } else {
-                    let n = verts.len() as i64;
-                    let r = |i: usize| i as i64 - n;
-                    s += &format!("f {}/1 {}/1 {}//2 {}\n", r(q[0]), r(q[1]), r(q[2]), r(q[3]));
+                let n = verts.len() as i64;
+                let r = |i: usize| i as i64 - n;
+                match k % 4 {
+                    0 | 2 => {
+                        s += &format!("f {} {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1)
+                    }
+                    // Every corner with both attributes: they reach the builder.
+                    1 => {
+                        s += &format!(
+                            "f {}/1/1 {}/2/2 {}/-1/1 {}/-2/-1\n",
+                            q[0] + 1,
+                            r(q[1]),
+                            q[2] + 1,
+                            r(q[3])
+                        )
+                    }
+                    // Attributes on some corners only: the face gets none.
+                    _ => {
+                        s += &format!("f {}/1 {}/1 {}//2 {}\n", r(q[0]), r(q[1]), r(q[2]), r(q[3]))
+                    }
                 }
             }
             vec![s.into_bytes()]
@@ -196,8 +210,34 @@ fn dictionary(format: Format) -> Vec<&'static [u8]> {
     ];
     match format {
         Format::Obj => d.extend_from_slice(&[
-            b"v", b"vt", b"vn", b"f", b"o", b"g", b"s", b"l", b"usemtl", b"mtllib", b"newmtl",
-            b"Kd", b"d", b"Tr", b"/", b"//", b"\\\n", b"\\", b"-4", b"-3", b"0/0/0", b"1/2/3",
+            b"v",
+            b"vt",
+            b"vn",
+            b"f",
+            b"o",
+            b"g",
+            b"s",
+            b"l",
+            b"usemtl",
+            b"mtllib",
+            b"newmtl",
+            b"Kd",
+            b"d",
+            b"Tr",
+            b"map_Kd",
+            b"/",
+            b"//",
+            b"\\\n",
+            b"\\",
+            b"-4",
+            b"-3",
+            b"0/0/0",
+            b"1/2/3",
+            b"1/1/1",
+            b"-1/-1/-1",
+            b"2//2",
+            b"vt 0 0\n",
+            b"vn 0 0 1\n",
         ]),
         Format::Stl => d.extend_from_slice(&[
             b"solid",
@@ -475,8 +515,20 @@ fn fuzz(format: Format, cases: u32) {
     let (ok, bytes_seen) = (Cell::new(0u64), Cell::new(0u64));
     let result = runner.run(&inputs(format), |bytes| {
         bytes_seen.set(bytes_seen.get() + bytes.len() as u64);
-        if load_bytes(&bytes, format, "fuzz", None).is_ok() {
+        if let Ok(s) = load_bytes(&bytes, format, "fuzz", None) {
             ok.set(ok.get() + 1);
+            // Per-corner attributes are absent or parallel to the corners.
+            for len in [s.corner_uvs.len(), s.corner_normals.len()] {
+                prop_assert!(len == 0 || len == s.corners.len());
+            }
+            prop_assert!(
+                s.corner_uvs
+                    .iter()
+                    .flatten()
+                    .flatten()
+                    .all(|x| x.is_finite())
+            );
+            prop_assert!(s.corner_normals.iter().flatten().all(|n| n.is_finite()));
         }
         Ok(())
     });
@@ -609,8 +661,15 @@ fn fuzz_mtl_long() {
 fn grid_seeds_load() {
     for f in [Format::Obj, Format::Stl, Format::Ply] {
         for b in grid_seeds(f) {
-            if let Err(e) = load_bytes(&b, f, "grid", None) {
-                panic!("{e}")
+            match load_bytes(&b, f, "grid", None) {
+                Err(e) => panic!("{e}"),
+                // The OBJ grid's attributes reach the scene.
+                Ok(s) if f == Format::Obj => {
+                    assert!(s.corner_uvs.iter().any(Option::is_some));
+                    assert!(s.corner_normals.iter().any(Option::is_some));
+                    assert!(s.corner_uvs.iter().any(Option::is_none));
+                }
+                Ok(_) => {}
             }
         }
     }

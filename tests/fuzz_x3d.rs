@@ -21,6 +21,7 @@ const FIXTURES: &[&str] = &[
     include_str!("../fixtures/seed_transparent.x3d"),
     include_str!("../fixtures/primitives.x3d"),
     include_str!("../fixtures/indexed.x3d"),
+    include_str!("../fixtures/checker_quad.x3d"),
 ];
 
 thread_local! {
@@ -30,10 +31,25 @@ thread_local! {
 
 /// Loads and checks the outcome: a scene keeps its invariants, an error names an element.
 fn check(bytes: &[u8]) {
-    match load_bytes(bytes, Format::X3d, "fuzz.x3d", None) {
+    // ImageTexture urls are resolved against the fixtures (only checked for existence).
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures");
+    match load_bytes(bytes, Format::X3d, "fuzz.x3d", Some(&dir)) {
         Ok(s) => {
             OUTCOMES.set((OUTCOMES.get().0 + 1, OUTCOMES.get().1));
             assert!(!s.faces.is_empty());
+            // Per-corner attributes are absent or parallel to the corners, and finite.
+            for len in [s.corner_uvs.len(), s.corner_normals.len()] {
+                assert!(len == 0 || len == s.corners.len());
+            }
+            assert!(
+                s.corner_uvs
+                    .iter()
+                    .flatten()
+                    .flatten()
+                    .all(|x| x.is_finite())
+            );
+            assert!(s.corner_normals.iter().flatten().all(|n| n.is_finite()));
+            assert!(s.material_textures.len() <= s.materials.len());
             assert!(s.positions.iter().all(|p| p.is_finite()));
             for f in &s.faces {
                 assert!(f.len >= 3);
@@ -118,6 +134,13 @@ const TOKENS: &[&str] = &[
     "<Viewpoint fieldOfView='3.2'/>",
     "<Coordinate point='0 0 0 1 1 1'/>",
     "<IndexedFaceSet coordIndex='0 0 0 -1 -1'>",
+    "<TextureCoordinate point='0 0 1 0 1 1'/>",
+    "<Normal vector='0 0 1'/>",
+    "<ImageTexture url='\"checker16.png\"'/>",
+    " texCoordIndex='0 1 2 -1'",
+    " normalIndex='0 0 0 -1'",
+    " normalPerVertex='false'",
+    " url='\"a\" \"'",
     "\u{feff}",
     "\u{00e9}",
 ];
@@ -284,6 +307,20 @@ fn random_scene() -> impl Strategy<Value = Vec<u8>> {
     ];
     let points = prop::collection::vec(coord, 3..60);
     let index = prop::collection::vec(-1i32..20, 0..80);
+    // Optional TextureCoordinate / Normal children with their own index lists: (how many
+    // values, own index list or none (the coordIndex rule), per vertex).
+    let attributes = (
+        prop::option::of((
+            1usize..12,
+            prop::option::of(prop::collection::vec(-1i32..12, 0..80)),
+        )),
+        prop::option::of((
+            1usize..12,
+            prop::option::of(prop::collection::vec(-1i32..12, 0..80)),
+        )),
+        any::<bool>(),
+        any::<bool>(),
+    );
     let shape = (
         0usize..8,
         points,
@@ -292,8 +329,9 @@ fn random_scene() -> impl Strategy<Value = Vec<u8>> {
         mostly_valid(3, 0.0, 1.0),
         any::<bool>(),
         any::<bool>(),
+        attributes,
     )
-        .prop_map(|(kind, mut pts, index, value, colour, ccw, solid)| {
+        .prop_map(|(kind, mut pts, index, value, colour, ccw, solid, (tex, nor, per_vertex, texture))| {
             pts.truncate(pts.len() / 3 * 3);
             let n = (pts.len() / 3) as i32;
             let pts = pts.join(" ");
@@ -303,19 +341,55 @@ fn random_scene() -> impl Strategy<Value = Vec<u8>> {
                 .map(|&i| if i < 0 { i } else { i % n }.to_string())
                 .collect();
             let idx = idx.join(" ");
-            let flags = format!("ccw='{ccw}' solid='{solid}'");
+            let mut flags = format!("ccw='{ccw}' solid='{solid}' normalPerVertex='{per_vertex}'");
+            // Mostly the coordIndex structure with in-range values, sometimes anything.
+            let own_index = |own: &Option<Vec<i32>>, count: usize| match own {
+                Some(v) if v.len() % 3 == 0 => Some(
+                    v.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(" "),
+                ),
+                _ => Some(
+                    index
+                        .iter()
+                        .zip(own.iter().flatten().chain(std::iter::repeat(&0)))
+                        .map(|(&i, &o)| if i < 0 { -1 } else { o.rem_euclid(count as i32) })
+                        .map(|i| i.to_string())
+                        .collect::<Vec<_>>()
+                        .join(" "),
+                )
+                .filter(|_| own.is_some()),
+            };
+            let mut children = String::new();
+            // Large counts stand for "one per point", so that many cases load.
+            let fit = |c: usize| if c >= 8 { (n as usize).max(1) } else { c };
+            if let Some((count, own)) = &tex {
+                let count = &fit(*count);
+                let pts: Vec<String> = (0..2 * count).map(|k| (k % 3).to_string()).collect();
+                children += &format!("<TextureCoordinate point='{}'/>", pts.join(" "));
+                if let Some(i) = own_index(own, *count) {
+                    flags += &format!(" texCoordIndex='{i}'");
+                }
+            }
+            if let Some((count, own)) = &nor {
+                let count = &fit(*count);
+                let v: Vec<String> = (0..3 * count).map(|k| (k % 4).to_string()).collect();
+                children += &format!("<Normal vector='{}'/>", v.join(" "));
+                if let Some(i) = own_index(own, *count) {
+                    flags += &format!(" normalIndex='{i}'");
+                }
+            }
+            let image = if texture { "<ImageTexture url='\"checker16.png\"'/>" } else { "" };
             let value = value.replace(['"', '\'', '<', '&'], "");
             let colour = colour.replace(['"', '\'', '<', '&'], "");
             let geometry = match kind {
-                0 => format!("<TriangleSet {flags}><Coordinate point='{pts}'/></TriangleSet>"),
+                0 => format!("<TriangleSet {flags}><Coordinate point='{pts}'/>{children}</TriangleSet>"),
                 1 | 2 => format!(
-                    "<IndexedFaceSet {flags} coordIndex='{idx}'><Coordinate point='{pts}'/></IndexedFaceSet>"
+                    "<IndexedFaceSet {flags} coordIndex='{idx}'><Coordinate point='{pts}'/>{children}</IndexedFaceSet>"
                 ),
                 3 => {
                     // No separators in an IndexedTriangleSet.
                     let idx = idx.replace("-1", "0");
                     format!(
-                        "<IndexedTriangleSet {flags} index='{idx}'><Coordinate point='{pts}'/></IndexedTriangleSet>"
+                        "<IndexedTriangleSet {flags} index='{idx}'><Coordinate point='{pts}'/>{children}</IndexedTriangleSet>"
                     )
                 }
                 4 => format!("<Box size='{value} {value} {value}'/>"),
@@ -323,7 +397,7 @@ fn random_scene() -> impl Strategy<Value = Vec<u8>> {
                 6 => format!("<Cone bottomRadius='{value}' side='{ccw}' bottom='{solid}'/>"),
                 _ => format!("<Cylinder height='{value}' top='{ccw}'/>"),
             };
-            format!("<Shape><Appearance><Material diffuseColor='{colour}'/></Appearance>{geometry}</Shape>")
+            format!("<Shape><Appearance><Material diffuseColor='{colour}'/>{image}</Appearance>{geometry}</Shape>")
         });
     let transform = (
         prop::option::of(mostly_valid(3, -3.0, 3.0)),

@@ -97,6 +97,93 @@ fn mtl_bad_number_names_the_mtl_file() {
 }
 
 #[test]
+fn obj_texture_coordinate_index_zero() {
+    check(
+        "obj_vt_index_zero.obj",
+        Line(6),
+        &["texture coordinate index 0", "start at 1"],
+    );
+}
+
+#[test]
+fn obj_normal_index_zero() {
+    check(
+        "obj_vn_index_zero.obj",
+        Line(6),
+        &["normal index 0", "start at 1"],
+    );
+}
+
+#[test]
+fn obj_texture_coordinate_out_of_range_names_the_face_line() {
+    // Found only at the end of the file (a vt may follow the face), reported at the face.
+    check(
+        "obj_vt_out_of_range.obj",
+        Line(8),
+        &[
+            "texture coordinate index 3 out of range",
+            "the file has 2 texture coordinates",
+        ],
+    );
+}
+
+#[test]
+fn obj_negative_normal_index_out_of_range() {
+    check(
+        "obj_vn_negative_out_of_range.obj",
+        Line(7),
+        &[
+            "normal index -3 out of range",
+            "only 1 normals are defined before this line",
+        ],
+    );
+}
+
+#[test]
+fn obj_first_attribute_index_out_of_range_is_reported() {
+    // A bad normal on line 6 and a bad texture coordinate on line 8: line 6 is reported.
+    check(
+        "obj_vn_out_of_range.obj",
+        Line(6),
+        &["normal index 2 out of range", "the file has 1 normals"],
+    );
+}
+
+#[test]
+fn obj_texture_coordinate_bad_number() {
+    check("obj_vt_bad_number.obj", Line(4), &["bad number", "'0,5'"]);
+}
+
+#[test]
+fn obj_texture_coordinate_without_numbers() {
+    check("obj_vt_empty.obj", Line(4), &["vt has no coordinates"]);
+}
+
+#[test]
+fn obj_normal_with_two_numbers() {
+    check(
+        "obj_vn_short.obj",
+        Line(5),
+        &["vn has 2 coordinates, needs 3"],
+    );
+}
+
+#[test]
+fn obj_normal_nan() {
+    check("obj_vn_nan.obj", Line(4), &["'nan'", "not finite"]);
+}
+
+#[test]
+fn mtl_texture_without_file_name_names_the_mtl_file() {
+    check_in(
+        "mtl_map_kd_no_file.obj",
+        Some("mtl_map_kd_no_file.mtl"),
+        Line(4),
+        &["map_Kd without a file name"],
+    );
+}
+
+#[test]
 fn stl_truncated() {
     check(
         "stl_truncated.stl",

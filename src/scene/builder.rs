@@ -30,6 +30,7 @@ pub struct SceneBuilder {
     mesh_open: bool,
     default_material: Option<u32>,
     scratch: Vec<u32>,
+    scratch_keep: Vec<usize>,
 }
 
 impl SceneBuilder {
@@ -42,6 +43,7 @@ impl SceneBuilder {
             mesh_open: false,
             default_material: None,
             scratch: Vec::new(),
+            scratch_keep: Vec::new(),
         }
     }
 
@@ -125,8 +127,10 @@ impl SceneBuilder {
     }
 
     /// [`Self::add_face`] with per-corner normals and texture coordinates (each, when given, as
-    /// long as `corners`). Dropped repeats and triangulated pieces keep the attributes of the
-    /// corner they came from (the first input corner with that vertex index).
+    /// long as `corners`). Every kept corner keeps the attributes of the input corner it is, even
+    /// when the polygon visits one vertex twice: a dropped repeat (consecutive corners at one
+    /// position, cyclically) gives way to the first of the run, and triangulated pieces take their
+    /// corners' attributes.
     pub fn add_face_with(
         &mut self,
         corners: &[u32],
@@ -146,20 +150,25 @@ impl SceneBuilder {
             self.begin_mesh("mesh");
         }
 
-        // Drop consecutive repeats (by index or by position), cyclically.
+        // Drop consecutive repeats (by index or by position), cyclically. `keep` holds the
+        // positions in `corners` of the corners kept, `clean` their vertex indices.
+        let mut keep = std::mem::take(&mut self.scratch_keep);
         let mut clean = std::mem::take(&mut self.scratch);
+        keep.clear();
         clean.clear();
         let pos = &self.scene.positions;
-        for &c in corners {
+        for (k, &c) in corners.iter().enumerate() {
             if clean
                 .last()
                 .is_none_or(|&l| pos[l as usize] != pos[c as usize])
             {
+                keep.push(k);
                 clean.push(c);
             }
         }
         while clean.len() > 1 && pos[clean[0] as usize] == pos[*clean.last().unwrap() as usize] {
             clean.pop();
+            keep.pop();
         }
 
         let outcome = match non_collinear_triple(pos, &clean) {
@@ -169,15 +178,16 @@ impl SceneBuilder {
             }
             Some((a, b, c)) => {
                 if clean.len() == 3 || is_planar(pos, &clean, a, b, c) {
-                    self.push_face(id, material, &clean, corners, attrs);
+                    self.push_face(id, material, &keep, corners, attrs);
                     FaceOutcome::Kept
                 } else {
                     let triangles = triangulate(pos, &clean);
                     self.scene.stats.nonplanar_triangulated += 1;
                     let mut kept = 0;
                     for t in &triangles {
-                        if non_collinear_triple(&self.scene.positions, t).is_some() {
-                            self.push_face(id, material, t, corners, attrs);
+                        let vertices = t.map(|i| clean[i]);
+                        if non_collinear_triple(&self.scene.positions, &vertices).is_some() {
+                            self.push_face(id, material, &t.map(|i| keep[i]), corners, attrs);
                             kept += 1;
                         }
                     }
@@ -186,33 +196,34 @@ impl SceneBuilder {
             }
         };
         self.scratch = clean;
+        self.scratch_keep = keep;
         outcome
     }
 
+    /// Adds the face made of the input corners at positions `picks` of `input`.
     fn push_face(
         &mut self,
         id: FaceId,
         material: u32,
-        corners: &[u32],
+        picks: &[usize],
         input: &[u32],
         attrs: CornerAttrs,
     ) {
         let start = self.scene.corners.len() as u32;
-        self.scene.corners.extend_from_slice(corners);
+        self.scene.corners.extend(picks.iter().map(|&k| input[k]));
         // Attribute vectors stay empty until some face has the attribute, then cover every corner.
-        let from = |v: u32| input.iter().position(|&c| c == v).unwrap_or(0);
         let n = self.scene.corners.len();
         if let Some(normals) = attrs.normals {
             let cn = &mut self.scene.corner_normals;
             cn.resize(start as usize, None);
-            cn.extend(corners.iter().map(|&v| Some(normals[from(v)])));
+            cn.extend(picks.iter().map(|&k| Some(normals[k])));
         } else if !self.scene.corner_normals.is_empty() {
             self.scene.corner_normals.resize(n, None);
         }
         if let Some(uvs) = attrs.uvs {
             let cu = &mut self.scene.corner_uvs;
             cu.resize(start as usize, None);
-            cu.extend(corners.iter().map(|&v| Some(uvs[from(v)])));
+            cu.extend(picks.iter().map(|&k| Some(uvs[k])));
         } else if !self.scene.corner_uvs.is_empty() {
             self.scene.corner_uvs.resize(n, None);
         }
@@ -221,7 +232,7 @@ impl SceneBuilder {
             mesh: (self.scene.meshes.len() - 1) as u32,
             material,
             start,
-            len: corners.len() as u32,
+            len: picks.len() as u32,
         });
         self.scene.meshes.last_mut().unwrap().faces.end = self.scene.faces.len();
     }
@@ -293,8 +304,8 @@ fn is_planar(pos: &[DVec3], corners: &[u32], a: usize, b: usize, c: usize) -> bo
 /// Triangulates a non-planar polygon: a constrained Delaunay triangulation (spade) of its
 /// projection on the plane most perpendicular to its Newell normal, keeping the triangles inside
 /// the projected polygon and the polygon's winding. Falls back to a fan when the projection is
-/// not a simple polygon.
-fn triangulate(pos: &[DVec3], corners: &[u32]) -> Vec<Vec<u32>> {
+/// not a simple polygon. Triangles are given as positions in `corners`.
+fn triangulate(pos: &[DVec3], corners: &[u32]) -> Vec<[usize; 3]> {
     use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
     let n = newell_normal(corners.iter().map(|&c| pos[c as usize]));
@@ -311,11 +322,7 @@ fn triangulate(pos: &[DVec3], corners: &[u32]) -> Vec<Vec<u32>> {
             [p[i], p[j]]
         })
         .collect();
-    let fan = || {
-        (1..corners.len() - 1)
-            .map(|k| vec![corners[0], corners[k], corners[k + 1]])
-            .collect()
-    };
+    let fan = || (1..corners.len() - 1).map(|k| [0, k, k + 1]).collect();
 
     let mut cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::new();
     let mut handle_corner: Vec<usize> = Vec::new();
@@ -348,10 +355,7 @@ fn triangulate(pos: &[DVec3], corners: &[u32]) -> Vec<Vec<u32>> {
             continue;
         }
         // spade's faces are counter-clockwise in the projection plane.
-        let mut tri: Vec<u32> = vs
-            .iter()
-            .map(|v| corners[handle_corner[v.fix().index()]])
-            .collect();
+        let mut tri = vs.map(|v| handle_corner[v.fix().index()]);
         if flip {
             tri.reverse();
         }
@@ -439,6 +443,103 @@ mod tests {
         assert_eq!(s.stats.degenerate_dropped, 2);
         assert_eq!(s.faces[0].id, 2);
         assert_eq!(s.input_faces, 3);
+    }
+
+    /// Attributes that name their input corner: uv (k, -k), normal (k, 1, 0) at corner k.
+    fn tagged(n: usize) -> (Vec<DVec3>, Vec<[f64; 2]>) {
+        (
+            (0..n).map(|k| DVec3::new(k as f64, 1.0, 0.0)).collect(),
+            (0..n).map(|k| [k as f64, -(k as f64)]).collect(),
+        )
+    }
+
+    /// The input corner each scene corner of face `f` took its attributes from (checking that
+    /// the normal and the uv agree).
+    fn sources(s: &Scene, f: usize) -> Vec<usize> {
+        let face = &s.faces[f];
+        let uvs = s.face_corner_uvs(face).unwrap();
+        let normals = s.face_corner_normals(face).unwrap();
+        uvs.iter()
+            .zip(&normals)
+            .map(|(uv, n)| {
+                assert_eq!(uv[0], n.x, "normal and uv from different corners");
+                assert_eq!(uv[1], -uv[0]);
+                uv[0] as usize
+            })
+            .collect()
+    }
+
+    #[test]
+    fn attributes_survive_dropped_repeats_each_corner_its_own() {
+        // A planar figure eight: the square 0 1 2 3 and the triangle 0 4 5 meeting at vertex 0,
+        // visited twice (input corners 0 and 5); vertex 1 repeated (input corners 1 and 2),
+        // vertex 6 sits at vertex 4's position (input corners 7 and 8), and the last corner
+        // repeats the first, cyclically.
+        let mut b = builder_with(&[
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [1., 1., 0.],
+            [0., 1., 0.],
+            [-1., 0., 0.],
+            [-1., -1., 0.],
+            [-1., 0., 0.],
+        ]);
+        let m = b.default_material();
+        let input = [0, 1, 1, 2, 3, 0, 5, 4, 6, 0];
+        let (normals, uvs) = tagged(input.len());
+        let attrs = CornerAttrs {
+            normals: Some(&normals),
+            uvs: Some(&uvs),
+        };
+        assert_eq!(b.add_face_with(&input, m, attrs), FaceOutcome::Kept);
+        // A face without attributes after it: its corners get none, the vectors stay parallel.
+        assert_eq!(b.add_face(&[0, 1, 2], m), FaceOutcome::Kept);
+        let s = b.finish().unwrap();
+        assert_eq!(s.face_corners(&s.faces[0]), &[0, 1, 2, 3, 0, 5, 4]);
+        // First of each run of repeats; the second visit of vertex 0 keeps its own corner (5).
+        assert_eq!(sources(&s, 0), [0, 1, 3, 4, 5, 6, 7]);
+        assert_eq!(s.corner_uvs.len(), s.corners.len());
+        assert_eq!(s.corner_normals.len(), s.corners.len());
+        assert!(s.face_corner_uvs(&s.faces[1]).is_none());
+        assert!(s.corner_uvs[7..].iter().all(Option::is_none));
+    }
+
+    #[test]
+    fn attributes_follow_their_corners_into_triangulated_pieces() {
+        // The lifted L of the test above, with vertex 2 repeated (input corners 2 and 3) and a
+        // trailing repeat of the first corner.
+        let mut b = builder_with(&[
+            [0., 0., 0.],
+            [2., 0., 0.],
+            [2., 1., 0.],
+            [1., 1., 0.],
+            [1., 2., 0.5],
+            [0., 2., 0.],
+        ]);
+        let m = b.default_material();
+        let input = [0, 1, 2, 2, 3, 4, 5, 0];
+        let (normals, uvs) = tagged(input.len());
+        let attrs = CornerAttrs {
+            normals: Some(&normals),
+            uvs: Some(&uvs),
+        };
+        assert_eq!(
+            b.add_face_with(&input, m, attrs),
+            FaceOutcome::Triangulated(4)
+        );
+        let s = b.finish().unwrap();
+        // Vertex v came from input corner `from[v]`.
+        let from = [0, 1, 2, 4, 5, 6];
+        let mut seen = [false; 6];
+        for (f, face) in s.faces.iter().enumerate() {
+            let vs = s.face_corners(face);
+            let want: Vec<usize> = vs.iter().map(|&v| from[v as usize]).collect();
+            assert_eq!(sources(&s, f), want, "piece {f}: {vs:?}");
+            for &v in vs {
+                seen[v as usize] = true;
+            }
+        }
+        assert_eq!(seen, [true; 6]);
     }
 
     #[test]

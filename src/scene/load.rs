@@ -57,7 +57,7 @@ pub fn load(path: &Path, format: Option<Format>) -> Result<Scene, LoadError> {
 }
 
 /// Loads a scene from bytes already in memory. `name` is used in messages; `dir` is where files
-/// the scene refers to (an OBJ's .mtl) are looked for.
+/// the scene refers to (an OBJ's .mtl and textures, an X3D ImageTexture) are looked for.
 pub fn load_bytes(
     bytes: &[u8],
     format: Format,
@@ -68,6 +68,6 @@ pub fn load_bytes(
         Format::Obj => super::obj::load(bytes, name, dir),
         Format::Stl => super::stl::load(bytes, name),
         Format::Ply => super::ply::load(bytes, name),
-        Format::X3d => super::x3d::load(bytes, name),
+        Format::X3d => super::x3d::load(bytes, name, dir),
     }
 }

@@ -8,8 +8,12 @@
 //! and `Tr` the later statement wins. Other standard statements (`Ka`, `Ks`, `Ns`, `illum`,
 //! `map_*` other than `map_Kd`, ...) are ignored silently since they do not change what a face looks like here;
 //! unknown ones get one warning per keyword. `Kd spectral` / `Kd xyz` get a warning and are
-//! ignored. `map_Kd [options] FILE` names the diffuse texture: the last token is the file (option
-//! values are skipped, not applied); `map_Kd` with nothing after it is an error. Errors (bad or non-finite numbers, wrong value counts) name the `.mtl` file and line.
+//! ignored. `map_Kd [options] FILE` names the diffuse texture: the options of the MTL
+//! specification (`-blendu`, `-blendv`, `-cc`, `-clamp`, `-boost`, `-texres`, `-bm`, `-imfchan`,
+//! `-type` with one value, `-mm` with two, `-o`, `-s`, `-t` with one to three numbers) are skipped,
+//! not applied, and the rest of the line is the file name (it may hold spaces). `map_Kd` with no
+//! file name after its options is an error. Errors (bad or non-finite numbers, wrong value
+//! counts, a texture without a file) name the `.mtl` file and line.
 
 use super::Material;
 use super::text::{Tokens, lossy, next_line, parse_f64, show, strip_comment};
@@ -59,7 +63,7 @@ pub(super) fn parse_with_textures(
             continue;
         }
         if kw == b"map_Kd" {
-            let Some(name) = toks.last() else {
+            let Some(name) = texture_file(toks) else {
                 return Err(LoadError::line(file, line, "map_Kd without a file name"));
             };
             match textures.last_mut() {
@@ -168,6 +172,38 @@ pub(super) fn parse_with_textures(
     Ok((out, textures))
 }
 
+/// The file name of a texture statement after its options (see the module docs), `None` when
+/// nothing is left.
+fn texture_file<'a>(mut toks: Tokens<'a>) -> Option<&'a [u8]> {
+    loop {
+        let mut after = toks.clone();
+        let arity = match after.next()? {
+            b"-blendu" | b"-blendv" | b"-cc" | b"-clamp" | b"-boost" | b"-texres" | b"-bm"
+            | b"-imfchan" | b"-type" => 1,
+            b"-mm" => 2,
+            b"-o" | b"-s" | b"-t" => {
+                // One to three numbers: the first is required, the others only if numeric.
+                after.next()?;
+                for _ in 0..2 {
+                    let mut peek = after.clone();
+                    if peek.next().and_then(parse_f64).is_some() {
+                        after = peek;
+                    }
+                }
+                0
+            }
+            _ => {
+                let rest = toks.rest();
+                return (!rest.is_empty()).then_some(rest);
+            }
+        };
+        for _ in 0..arity {
+            after.next()?;
+        }
+        toks = after;
+    }
+}
+
 /// Reads up to `N` finite numbers; returns how many tokens there were (more than `N` is reported
 /// as `N + 1`) and the values.
 fn numbers<const N: usize>(
@@ -268,6 +304,37 @@ mod tests {
             assert_eq!(e.file, "t.mtl");
             assert_eq!(e.location, Location::Line(line), "{src:?}: {e}");
             assert!(e.message.contains(needle), "{src:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn texture_options_are_skipped_and_the_rest_is_the_file() {
+        let mut w = Vec::new();
+        let src = "newmtl a\nmap_Kd -s 2 2 1 -clamp on tex.png\nnewmtl b\nmap_Kd -o 0.5 -mm 0 1 my tex.png\n\
+                   newmtl c\nmap_Kd -t 1 -blendu off 2.png\nnewmtl d\n";
+        let (_, t) = parse_with_textures(src.as_bytes(), "t.mtl", &mut w).unwrap();
+        assert!(w.is_empty(), "{w:?}");
+        let t: Vec<Option<&[u8]>> = t.iter().map(|t| t.as_deref()).collect();
+        assert_eq!(
+            t,
+            [
+                Some(&b"tex.png"[..]),
+                Some(&b"my tex.png"[..]),
+                Some(&b"2.png"[..]),
+                None
+            ]
+        );
+        for (src, line) in [
+            ("newmtl a\nmap_Kd\n", 2),
+            ("newmtl a\nmap_Kd   # comment\n", 2),
+            ("newmtl a\nKd 1 1 1\nmap_Kd -s 1 1 1\n", 3),
+            ("newmtl a\nmap_Kd -clamp\n", 2),
+            ("newmtl a\nmap_Kd -mm 0 1\n", 2),
+        ] {
+            let e = parse_str(src).0.unwrap_err();
+            assert_eq!(e.file, "t.mtl");
+            assert_eq!(e.location, Location::Line(line), "{src:?}: {e}");
+            assert!(e.message.contains("map_Kd without a file name"), "{e}");
         }
     }
 

@@ -311,7 +311,7 @@ impl<'a> Parser<'a> {
                 return Err(self.err(
                     line,
                     format!(
-                        "{what} index {i} out of range: only {defined} are defined before this line"
+                        "{what} index {i} out of range: only {defined} {what}s are defined before this line"
                     ),
                 ));
             }
@@ -434,38 +434,53 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
-    fn finish(self) -> Result<Scene, LoadError> {
+    /// The first (by line) positive index that is still out of range at the end of the file.
+    fn range_error(&self) -> Option<LoadError> {
         let total = self.builder.vertex_count() as u64;
-        if let Some(&(line, i, defined)) = self.forward.iter().find(|f| f.1 > total) {
-            return Err(self.err(
-                line,
-                format!(
-                    "vertex index {i} out of range: the file has {total} vertices ({defined} defined before this line)"
-                ),
-            ));
-        }
-
-        for (what, idx, total) in [
-            ("texture coordinate", &self.corner_tex, self.uvs.len()),
-            ("normal", &self.corner_nor, self.normals.len()),
-        ] {
-            let mut start = 0usize;
-            for f in &self.faces {
-                let end = start + f.len as usize;
-                if let Some(&i) = idx[start..end]
-                    .iter()
-                    .find(|&&i| i != NONE && i as usize >= total)
-                {
-                    return Err(self.err(
-                        f.line,
-                        format!(
-                            "{what} index {} out of range: the file has {total}",
-                            i as u64 + 1
-                        ),
-                    ));
-                }
-                start = end;
+        let mut first: Option<(usize, String)> = self
+            .forward
+            .iter()
+            .find(|f| f.1 > total)
+            .map(|&(line, i, defined)| {
+                (
+                    line,
+                    format!(
+                        "vertex index {i} out of range: the file has {total} vertices ({defined} defined before this line)"
+                    ),
+                )
+            });
+        // Texture and normal indices: the first face (and its first bad corner) with either.
+        let mut start = 0usize;
+        for f in &self.faces {
+            if first.as_ref().is_some_and(|(l, _)| *l <= f.line) {
+                break;
             }
+            let end = start + f.len as usize;
+            for k in start..end {
+                for (what, i, total) in [
+                    ("texture coordinate", self.corner_tex[k], self.uvs.len()),
+                    ("normal", self.corner_nor[k], self.normals.len()),
+                ] {
+                    if i != NONE
+                        && i as usize >= total
+                        && first.as_ref().is_none_or(|(l, _)| *l > f.line)
+                    {
+                        let msg = format!(
+                            "{what} index {} out of range: the file has {total} {what}s",
+                            i as u64 + 1
+                        );
+                        first = Some((f.line, msg));
+                    }
+                }
+            }
+            start = end;
+        }
+        first.map(|(line, msg)| self.err(line, msg))
+    }
+
+    fn finish(self) -> Result<Scene, LoadError> {
+        if let Some(e) = self.range_error() {
+            return Err(e);
         }
 
         let mut b = self.builder;

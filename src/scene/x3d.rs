@@ -4,7 +4,8 @@
 //! `Collision` and `Anchor` (plain groups); `Transform` (translation, rotation, scale, center,
 //! scaleOrientation, composed as P' = T·C·R·SR·S·-SR·-C·P, nested transforms multiplied outside
 //! in); `Shape` with `Appearance`/`Material` (or `UnlitMaterial`); the geometry `TriangleSet`,
-//! `IndexedFaceSet`, `IndexedTriangleSet` (each with a `Coordinate` or `CoordinateDouble` child),
+//! `IndexedFaceSet`, `IndexedTriangleSet` (each with a `Coordinate` or `CoordinateDouble` child,
+//! and optionally `TextureCoordinate` and `Normal`), `ImageTexture` in an `Appearance`,
 //! `Box`, `Sphere`, `Cone`, `Cylinder`; `Viewpoint`; `DEF`/`USE` for every node read, resolved
 //! to the nearest earlier `DEF` of the same element name.
 //!
@@ -25,7 +26,21 @@
 //!   position and orientation (the view direction and up vector are carried through the transform
 //!   and re-orthonormalised, so a scale does not skew the camera); later ones are ignored with a
 //!   warning;
-//! - every other element (NavigationInfo, Background, ImageTexture, Color, Normal, lights,
+//! - texture coordinates and normals follow X3D's indexing: IndexedFaceSet uses `texCoordIndex`
+//!   (`normalIndex`) when it is not empty, with -1 at the same places as `coordIndex`, and
+//!   `coordIndex` otherwise; with `normalPerVertex="false"` one normal per polygon (by
+//!   `normalIndex`, else in order). IndexedTriangleSet indexes them by `index` (per face: in
+//!   order), TriangleSet takes them in order. Every index is range-checked like `coordIndex`.
+//!   Normals are carried to world space by the inverse transpose of the transform (not
+//!   normalised) and stay with their corners when the winding is reversed;
+//! - `ImageTexture`: the first `url` naming an existing file, resolved against the X3D file's
+//!   directory (urls with a scheme such as `http:` are not read; with no directory, bytes loaded
+//!   from memory, none is). When no url exists the first local one is kept and the renderer
+//!   warns that it cannot read it; loading does not fail. A texture is applied only to geometry
+//!   with a `TextureCoordinate` (default mappings are not generated; a warning says so), and then,
+//!   X3D's rule, it replaces the diffuse colour: the material's diffuse becomes white when the
+//!   image exists (the texture colour times the lighting);
+//! - every other element (NavigationInfo, Background, Color, lights,
 //!   ROUTEs, ...) is skipped with everything inside it, with one warning per element name giving
 //!   the line of its first occurrence. `<head>` under `<X3D>` is skipped silently;
 //! - a TriangleSet whose vertex count is not a multiple of 3, or an IndexedTriangleSet whose
@@ -35,20 +50,24 @@
 //!   innermost element open where the parser stopped, the parser's own line:column in the
 //!   message), a bad or non-finite number (naming the attribute and, for long values, the line of
 //!   the number), a wrong number of values, a coordIndex out of range or below -1, a negative
-//!   size or radius, a fieldOfView outside (0, π), a non-finite transformed vertex, and an empty
+//!   size or radius, a fieldOfView outside (0, π), a non-finite transformed vertex, a
+//!   TextureCoordinate or Normal value count that is not a multiple of 2 or 3, a texCoordIndex or
+//!   normalIndex that is too short, out of range or has its -1 elsewhere than coordIndex, too few
+//!   texture coordinates or normals for the vertices or faces, a malformed `url`, and an empty
 //!   scene (at the `<Scene>` element);
 //! - no input makes the loader panic, recurse without bound or allocate without bound: nesting
 //!   is limited to [`MAX_DEPTH`] levels, and DEF/USE expansion by caps on visited nodes, vertices,
 //!   faces and corners.
 
 use super::primitives::{self, Parts, Tessellation};
-use super::{Material, Scene, SceneBuilder, Viewpoint};
+use super::{CornerAttrs, Material, Scene, SceneBuilder, Viewpoint};
 use crate::error::LoadError;
 use glam::{DMat3, DMat4, DQuat, DVec3};
 use roxmltree::{Document, Node, NodeId, ParsingOptions};
 use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
 
 /// Deepest element nesting followed (the traversal is recursive).
 pub(crate) const MAX_DEPTH: usize = 128;
@@ -62,7 +81,7 @@ const MAX_XML_NODES: u32 = 1 << 26;
 
 type Res<T> = Result<T, LoadError>;
 
-pub(super) fn load(bytes: &[u8], name: &str) -> Res<Scene> {
+pub(super) fn load(bytes: &[u8], name: &str, dir: Option<&Path>) -> Res<Scene> {
     let text = decode(bytes, name)?;
     let options = ParsingOptions {
         // X3D files usually carry a DOCTYPE; roxmltree still guards against entity bombs.
@@ -72,7 +91,7 @@ pub(super) fn load(bytes: &[u8], name: &str) -> Res<Scene> {
     };
     let doc =
         Document::parse_with_options(&text, options).map_err(|e| syntax_error(name, &text, &e))?;
-    let mut ld = Loader::new(&doc, name);
+    let mut ld = Loader::new(&doc, name, dir);
     let root = doc.root_element();
     let scene = match root.tag_name().name() {
         "Scene" => root,
@@ -270,6 +289,43 @@ fn open_elements(text: &str, end: usize) -> Vec<(String, usize)> {
     open
 }
 
+/// What a geometry node holds: its Coordinate (points, node), TextureCoordinate and Normal.
+#[derive(Default)]
+struct Children<'a, 'i> {
+    points: Vec<DVec3>,
+    coord: Option<Node<'a, 'i>>,
+    uvs: Option<(Vec<[f64; 2]>, Node<'a, 'i>)>,
+    normals: Option<(Vec<DVec3>, Node<'a, 'i>)>,
+}
+
+/// The attributes of the face being emitted (each empty when the geometry has none).
+#[derive(Default)]
+struct FaceAttrs {
+    uvs: Vec<[f64; 2]>,
+    normals: Vec<DVec3>,
+}
+
+impl FaceAttrs {
+    /// Takes the attributes of corners `range` (indices checked already).
+    fn push(
+        &mut self,
+        uvs: &Option<(Vec<[f64; 2]>, Node)>,
+        uv_index: Option<&[i64]>,
+        normals: &[DVec3],
+        normal_index: Option<&[i64]>,
+        range: std::ops::Range<usize>,
+    ) {
+        if let (Some((uvs, _)), Some(ix)) = (uvs, uv_index) {
+            self.uvs
+                .extend(ix[range.clone()].iter().map(|&i| uvs[i as usize]));
+        }
+        if let Some(ix) = normal_index {
+            self.normals
+                .extend(ix[range].iter().map(|&i| normals[i as usize]));
+        }
+    }
+}
+
 /// Which corner order to emit: the file's, or reversed.
 fn flipped(ccw: bool, m: &DMat4) -> bool {
     !ccw ^ (m.determinant() < 0.0)
@@ -277,6 +333,8 @@ fn flipped(ccw: bool, m: &DMat4) -> bool {
 
 struct Loader<'a, 'i> {
     file: &'a str,
+    /// Where ImageTexture urls are looked for (`None`: bytes from memory, urls not followed).
+    dir: Option<&'a Path>,
     doc: &'a Document<'i>,
     /// Byte offset of the start of every line, for line numbers in O(log n).
     line_starts: Vec<usize>,
@@ -293,7 +351,7 @@ struct Loader<'a, 'i> {
 }
 
 impl<'a, 'i> Loader<'a, 'i> {
-    fn new(doc: &'a Document<'i>, file: &'a str) -> Self {
+    fn new(doc: &'a Document<'i>, file: &'a str, dir: Option<&'a Path>) -> Self {
         let text = doc.input_text();
         let line_starts = std::iter::once(0)
             .chain(
@@ -311,6 +369,7 @@ impl<'a, 'i> Loader<'a, 'i> {
         }
         Loader {
             file,
+            dir,
             doc,
             line_starts,
             b: SceneBuilder::new(file),
@@ -664,22 +723,51 @@ impl<'a, 'i> Loader<'a, 'i> {
             return Ok(());
         };
         let solid = self.boolean(geometry, "solid", true)?;
-        let mut material = match appearance {
+        let (mut material, texture) = match appearance {
             Some(a) => self.appearance(a)?,
-            None => Material::default(),
+            None => (Material::default(), None),
         };
         material.two_sided = !solid;
+        // A texture needs texture coordinates; only the polygon sets read them from the file.
+        let texture = texture.filter(|(path, tex_node)| {
+            let has_coords = matches!(
+                geometry.tag_name().name(),
+                "TriangleSet" | "IndexedFaceSet" | "IndexedTriangleSet"
+            ) && geometry
+                .children()
+                .any(|c| c.has_tag_name("TextureCoordinate"));
+            if !has_coords {
+                let (line, geom) = (self.line(*tex_node), geometry.tag_name().name().to_string());
+                self.warn_once(format!("texture without coordinates {line}"), || {
+                    format!(
+                        "line {line}: <ImageTexture> not applied: <{geom}> has no <TextureCoordinate> \
+                         (default texture mappings are not generated)"
+                    )
+                });
+            } else if path.is_file() {
+                // X3D: an RGB texture replaces the diffuse colour (lighting still applies).
+                material.diffuse = [1.0; 3];
+            }
+            has_coords
+        });
         let mesh = match node.attribute("DEF") {
             Some(d) => d.to_string(),
             None => format!("Shape (line {})", self.line(node)),
         };
         self.b.begin_mesh(mesh);
         let material = self.b.add_material(material);
+        if let Some((path, _)) = texture {
+            self.b.set_texture(material, path);
+        }
         self.geometry(geometry, m, material)
     }
 
-    fn appearance(&mut self, node: Node<'a, 'i>) -> Res<Material> {
-        let mut material = None;
+    /// The Material and the ImageTexture file of an Appearance.
+    fn appearance(
+        &mut self,
+        node: Node<'a, 'i>,
+    ) -> Res<(Material, Option<(PathBuf, Node<'a, 'i>)>)> {
+        let (mut material, mut texture) = (None, None);
         for c in node.children().filter(Node::is_element) {
             match c.tag_name().name() {
                 "Material" | "UnlitMaterial" if material.is_none() => {
@@ -687,10 +775,103 @@ impl<'a, 'i> Loader<'a, 'i> {
                         material = Some(self.material(r)?);
                     }
                 }
+                "ImageTexture" if texture.is_none() => {
+                    texture = Some(match self.resolve(c) {
+                        Some(r) => self.image_texture(r)?.map(|p| (p, r)),
+                        None => None,
+                    });
+                }
                 _ => self.skip(c),
             }
         }
-        Ok(material.unwrap_or_default())
+        Ok((material.unwrap_or_default(), texture.flatten()))
+    }
+
+    /// The file of an ImageTexture: the first `url` naming an existing file, resolved against
+    /// the X3D file's directory; when none exists, the first local one (the renderer warns that
+    /// it cannot read it). `None`, with a warning, when there is no local url or no directory.
+    fn image_texture(&mut self, node: Node) -> Res<Option<PathBuf>> {
+        let urls = self.strings(node, "url")?.unwrap_or_default();
+        let line = self.line(node);
+        // Only local files: a url with a scheme (http:, https:, data:, ...) is not read.
+        let local: Vec<&String> = urls
+            .iter()
+            .filter(|u| !u.is_empty() && !has_scheme(u))
+            .collect();
+        let Some(dir) = self.dir else {
+            self.warn_once("ImageTexture no dir".into(), || {
+                format!("line {line}: <ImageTexture> not read (no directory to look in)")
+            });
+            return Ok(None);
+        };
+        if local.is_empty() {
+            self.warn_once(format!("ImageTexture no url {line}"), || {
+                format!("line {line}: <ImageTexture> has no local file in its url; not applied")
+            });
+            return Ok(None);
+        }
+        let paths: Vec<PathBuf> = local.iter().map(|u| dir.join(u.as_str())).collect();
+        Ok(paths
+            .iter()
+            .find(|p| p.is_file())
+            .or(paths.first())
+            .cloned())
+    }
+
+    /// An MFString attribute: double-quoted strings (with `\"` and `\\` escapes) separated by
+    /// whitespace or commas; a value without any quote is taken as one string (a common
+    /// shorthand). `None` when absent.
+    fn strings(&self, node: Node, attr: &str) -> Res<Option<Vec<String>>> {
+        let Some(value) = node.attribute(attr) else {
+            return Ok(None);
+        };
+        let v = value.trim();
+        if !v.starts_with('"') {
+            return Ok(Some(if v.is_empty() {
+                vec![]
+            } else {
+                vec![v.to_string()]
+            }));
+        }
+        let mut out = Vec::new();
+        let mut chars = v.chars();
+        loop {
+            // Between strings: separators, then a quote or the end.
+            match chars.by_ref().find(|c| !(c.is_whitespace() || *c == ',')) {
+                None => return Ok(Some(out)),
+                Some('"') => {}
+                Some(c) => {
+                    return Err(self.err(
+                        node,
+                        format!(
+                            "attribute '{attr}': string {} should start with '\"', found '{c}'",
+                            out.len() + 1
+                        ),
+                    ));
+                }
+            }
+            let mut cur = String::new();
+            loop {
+                match chars.next() {
+                    None => {
+                        return Err(self.err(
+                            node,
+                            format!(
+                                "attribute '{attr}': string {} has no closing '\"'",
+                                out.len() + 1
+                            ),
+                        ));
+                    }
+                    Some('"') => break,
+                    Some('\\') => match chars.next() {
+                        Some(c) => cur.push(c),
+                        None => continue,
+                    },
+                    Some(c) => cur.push(c),
+                }
+            }
+            out.push(cur);
+        }
     }
 
     fn material(&mut self, node: Node) -> Res<Material> {
@@ -724,16 +905,35 @@ impl<'a, 'i> Loader<'a, 'i> {
         })
     }
 
-    /// The local points of a geometry node's Coordinate child (empty when it has none).
-    fn coordinates(&mut self, geometry: Node<'a, 'i>) -> Res<(Vec<DVec3>, Option<Node<'a, 'i>>)> {
-        let mut coord = None;
+    /// The children of a geometry node: the local points of its Coordinate (empty when it has
+    /// none), its TextureCoordinate points and its Normal vectors (each `None` when absent).
+    fn geometry_children(&mut self, geometry: Node<'a, 'i>) -> Res<Children<'a, 'i>> {
+        let (mut coord, mut tex, mut normal) = (None, None, None);
         for c in geometry.children().filter(Node::is_element) {
-            match c.tag_name().name() {
-                "Coordinate" | "CoordinateDouble" if coord.is_none() => {
-                    coord = Some(self.resolve(c));
+            let slot = match c.tag_name().name() {
+                "Coordinate" | "CoordinateDouble" => &mut coord,
+                "TextureCoordinate" => &mut tex,
+                "Normal" => &mut normal,
+                _ => {
+                    self.skip(c);
+                    continue;
                 }
-                _ => self.skip(c),
+            };
+            if slot.is_some() {
+                self.skip(c);
+            } else {
+                *slot = Some(self.resolve(c));
             }
+        }
+        let mut out = Children::default();
+        if let Some(Some(t)) = tex {
+            let v = self.tuples(t, "point", 2, "s t per point")?;
+            out.uvs = Some((v.chunks_exact(2).map(|c| [c[0], c[1]]).collect(), t));
+        }
+        if let Some(Some(n)) = normal {
+            let v = self.tuples(n, "vector", 3, "x y z per vector")?;
+            let normals = v.chunks_exact(3).map(DVec3::from_slice).collect();
+            out.normals = Some((normals, n));
         }
         let Some(Some(coord)) = coord else {
             if coord.is_none() {
@@ -743,23 +943,28 @@ impl<'a, 'i> Loader<'a, 'i> {
                     format!("line {line}: <{element}> has no <Coordinate>")
                 });
             }
-            return Ok((Vec::new(), None));
+            return Ok(out);
         };
-        let v = self.floats(coord, "point")?.unwrap_or_default();
-        if v.len() % 3 != 0 {
+        let v = self.tuples(coord, "point", 3, "x y z per point")?;
+        out.points = v.chunks_exact(3).map(DVec3::from_slice).collect();
+        out.coord = Some(coord);
+        Ok(out)
+    }
+
+    /// The numbers of a multi-value attribute whose count must be a multiple of `n` (empty when
+    /// absent).
+    fn tuples(&self, node: Node, attr: &str, n: usize, what: &str) -> Res<Vec<f64>> {
+        let v = self.floats(node, attr)?.unwrap_or_default();
+        if v.len() % n != 0 {
             return Err(self.err(
-                coord,
+                node,
                 format!(
-                    "attribute 'point' has {} numbers, not a multiple of 3 (x y z per point)",
+                    "attribute '{attr}' has {} numbers, not a multiple of {n} ({what})",
                     v.len()
                 ),
             ));
         }
-        let points = v
-            .chunks_exact(3)
-            .map(|c| DVec3::new(c[0], c[1], c[2]))
-            .collect();
-        Ok((points, Some(coord)))
+        Ok(v)
     }
 
     /// Adds transformed points as vertices; returns the index of the first.
@@ -796,11 +1001,21 @@ impl<'a, 'i> Loader<'a, 'i> {
         Ok(())
     }
 
-    fn face(&mut self, corners: &mut [u32], flip: bool, material: u32) {
+    /// Adds one face; its attributes (when given) are parallel to `corners` and reversed with
+    /// them.
+    fn face(&mut self, corners: &mut [u32], flip: bool, material: u32, attrs: &mut FaceAttrs) {
         if flip {
             corners.reverse();
+            attrs.uvs.reverse();
+            attrs.normals.reverse();
         }
-        self.b.add_face(corners, material);
+        let a = CornerAttrs {
+            uvs: (!attrs.uvs.is_empty()).then_some(&attrs.uvs[..]),
+            normals: (!attrs.normals.is_empty()).then_some(&attrs.normals[..]),
+        };
+        self.b.add_face_with(corners, material, a);
+        attrs.uvs.clear();
+        attrs.normals.clear();
     }
 
     fn geometry(&mut self, g: Node<'a, 'i>, m: &DMat4, material: u32) -> Res<()> {
@@ -855,7 +1070,9 @@ impl<'a, 'i> Loader<'a, 'i> {
 
     fn triangle_set(&mut self, g: Node<'a, 'i>, m: &DMat4, material: u32) -> Res<()> {
         let flip = flipped(self.boolean(g, "ccw", true)?, m);
-        let (points, coord) = self.coordinates(g)?;
+        let per_vertex = self.boolean(g, "normalPerVertex", true)?;
+        let ch = self.geometry_children(g)?;
+        let points = &ch.points;
         let whole = points.len() / 3 * 3;
         if whole != points.len() {
             let line = self.line(g);
@@ -865,36 +1082,78 @@ impl<'a, 'i> Loader<'a, 'i> {
                 points.len() - whole
             ));
         }
-        let base = self.add_points(coord.unwrap_or(g), &points[..whole], m)?;
+        // Attributes in order: one per vertex, or one normal per triangle.
+        let order: Vec<i64> = (0..whole as i64).collect();
+        let uv = self.attribute_indices(g, &ch.uvs, None, &order, true)?;
+        let per_face = (!per_vertex).then(|| (0..whole as i64 / 3).collect::<Vec<_>>());
+        let per_face = per_face.map(|f| f.iter().flat_map(|&k| [k; 3]).collect::<Vec<_>>());
+        let normal_order = per_face.as_deref().unwrap_or(&order);
+        let nor = self.attribute_indices(g, &ch.normals, None, normal_order, per_vertex)?;
+        let normals = self.world_normals(&ch.normals, m)?;
+        let base = self.add_points(ch.coord.unwrap_or(g), &points[..whole], m)?;
         self.reserve(g, whole / 3, whole)?;
-        for k in (0..whole as u32).step_by(3) {
-            self.face(&mut [base + k, base + k + 1, base + k + 2], flip, material);
+        let mut attrs = FaceAttrs::default();
+        for k in (0..whole).step_by(3) {
+            attrs.push(&ch.uvs, uv.as_deref(), &normals, nor.as_deref(), k..k + 3);
+            let b = base + k as u32;
+            self.face(&mut [b, b + 1, b + 2], flip, material, &mut attrs);
         }
         Ok(())
     }
 
     fn indexed_face_set(&mut self, g: Node<'a, 'i>, m: &DMat4, material: u32) -> Res<()> {
         let flip = flipped(self.boolean(g, "ccw", true)?, m);
+        let per_vertex = self.boolean(g, "normalPerVertex", true)?;
         let index = self.ints(g, "coordIndex")?.unwrap_or_default();
-        let (points, coord) = self.coordinates(g)?;
-        self.check_indices(g, "coordIndex", &index, points.len(), -1)?;
-        let polygons = index.split(|&i| i == -1).filter(|p| !p.is_empty());
-        self.reserve(g, polygons.clone().count(), index.len())?;
-        let base = self.add_points(coord.unwrap_or(g), &points, m)?;
+        let ch = self.geometry_children(g)?;
+        self.check_indices(g, "coordIndex", &index, ch.points.len(), -1, "Coordinate")?;
+        // Corner ranges of the polygons in `index` (empty ones skipped).
+        let mut polygons = Vec::new();
+        let mut start = 0;
+        for k in 0..=index.len() {
+            if k == index.len() || index[k] == -1 {
+                if k > start {
+                    polygons.push(start..k);
+                }
+                start = k + 1;
+            }
+        }
+        let uv = self.attribute_indices(g, &ch.uvs, Some("texCoordIndex"), &index, true)?;
+        let nor = if per_vertex {
+            self.attribute_indices(g, &ch.normals, Some("normalIndex"), &index, true)?
+        } else {
+            // One normal per polygon (normalIndex, else in order), spread over its corners.
+            let faces: Vec<i64> = (0..polygons.len() as i64).collect();
+            let per_face =
+                self.attribute_indices(g, &ch.normals, Some("normalIndex"), &faces, false)?;
+            per_face.map(|f| {
+                let mut spread = vec![-1; index.len()];
+                for (p, &n) in polygons.iter().zip(&f) {
+                    spread[p.clone()].fill(n);
+                }
+                spread
+            })
+        };
+        let normals = self.world_normals(&ch.normals, m)?;
+        self.reserve(g, polygons.len(), index.len())?;
+        let base = self.add_points(ch.coord.unwrap_or(g), &ch.points, m)?;
         let mut face = Vec::new();
+        let mut attrs = FaceAttrs::default();
         for p in polygons {
             face.clear();
-            face.extend(p.iter().map(|&i| base + i as u32));
-            self.face(&mut face, flip, material);
+            face.extend(index[p.clone()].iter().map(|&i| base + i as u32));
+            attrs.push(&ch.uvs, uv.as_deref(), &normals, nor.as_deref(), p);
+            self.face(&mut face, flip, material, &mut attrs);
         }
         Ok(())
     }
 
     fn indexed_triangle_set(&mut self, g: Node<'a, 'i>, m: &DMat4, material: u32) -> Res<()> {
         let flip = flipped(self.boolean(g, "ccw", true)?, m);
+        let per_vertex = self.boolean(g, "normalPerVertex", true)?;
         let index = self.ints(g, "index")?.unwrap_or_default();
-        let (points, coord) = self.coordinates(g)?;
-        self.check_indices(g, "index", &index, points.len(), 0)?;
+        let ch = self.geometry_children(g)?;
+        self.check_indices(g, "index", &index, ch.points.len(), 0, "Coordinate")?;
         let whole = index.len() / 3 * 3;
         if whole != index.len() {
             let line = self.line(g);
@@ -904,27 +1163,174 @@ impl<'a, 'i> Loader<'a, 'i> {
                 index.len() - whole
             ));
         }
+        let index = &index[..whole];
+        // The index serves the attributes too; normals per face go in triangle order.
+        let uv = self.attribute_indices(g, &ch.uvs, None, index, true)?;
+        let per_face: Vec<i64>;
+        let normal_order = if per_vertex {
+            index
+        } else {
+            per_face = (0..whole as i64).map(|k| k / 3).collect();
+            &per_face
+        };
+        let nor = self.attribute_indices(g, &ch.normals, None, normal_order, per_vertex)?;
+        let normals = self.world_normals(&ch.normals, m)?;
         self.reserve(g, whole / 3, whole)?;
-        let base = self.add_points(coord.unwrap_or(g), &points, m)?;
-        for t in index[..whole].chunks_exact(3) {
+        let base = self.add_points(ch.coord.unwrap_or(g), &ch.points, m)?;
+        let mut attrs = FaceAttrs::default();
+        for (k, t) in index.chunks_exact(3).enumerate() {
             let mut face = [0u32; 3];
             for (f, &i) in face.iter_mut().zip(t) {
                 *f = base + i as u32;
             }
-            self.face(&mut face, flip, material);
+            attrs.push(
+                &ch.uvs,
+                uv.as_deref(),
+                &normals,
+                nor.as_deref(),
+                3 * k..3 * k + 3,
+            );
+            self.face(&mut face, flip, material, &mut attrs);
         }
         Ok(())
     }
 
-    /// Every index in `lowest..points` (`lowest` is -1 where -1 separates polygons).
+    /// The index of each corner's attribute (TextureCoordinate point or Normal vector), parallel
+    /// to `order` (-1 where `order` separates polygons), or `None` when the geometry has no such
+    /// child. `own` names the geometry's own index attribute (texCoordIndex, normalIndex): when
+    /// it is present and not empty it must have a value for each of `order`, with -1 at the same
+    /// places (X3D's rule; extra values are ignored); otherwise `order` itself is used (X3D's
+    /// rule for an empty texCoordIndex or normalIndex: the coordIndex). `separated` says whether
+    /// `order` holds -1 separators (false for one normal per face). Every index used is checked
+    /// against the child's length.
+    fn attribute_indices<T>(
+        &self,
+        g: Node,
+        child: &Option<(Vec<T>, Node)>,
+        own: Option<&str>,
+        order: &[i64],
+        separated: bool,
+    ) -> Res<Option<Vec<i64>>> {
+        let Some((values, node)) = child else {
+            return Ok(None);
+        };
+        let target = node.tag_name().name();
+        let given = match own {
+            Some(attr) => self
+                .ints(g, attr)?
+                .filter(|v| !v.is_empty())
+                .map(|v| (attr, v)),
+            None => None,
+        };
+        let Some((attr, mut own)) = given else {
+            let lowest = if separated { -1 } else { 0 };
+            // `order` is the file's own index list (already checked against the Coordinate) or
+            // generated in order; either way it must fit the child too.
+            let attr = match g.tag_name().name() {
+                "IndexedFaceSet" if separated => "coordIndex",
+                "IndexedTriangleSet" if separated => "index",
+                _ => "",
+            };
+            if attr.is_empty() {
+                let need = order.iter().copied().max().map_or(0, |m| m + 1);
+                if need as u64 > values.len() as u64 {
+                    return Err(self.err(
+                        g,
+                        format!(
+                            "the <{target}> has {} value(s), {need} are needed (one per {})",
+                            values.len(),
+                            if separated { "vertex" } else { "face" }
+                        ),
+                    ));
+                }
+            } else {
+                self.check_indices(g, attr, order, values.len(), lowest, target)?;
+            }
+            return Ok(Some(order.to_vec()));
+        };
+        if own.len() < order.len() {
+            return Err(self.err(
+                g,
+                format!(
+                    "attribute '{attr}' has {} value(s), fewer than the {} it needs",
+                    own.len(),
+                    order.len()
+                ),
+            ));
+        }
+        own.truncate(order.len());
+        if separated && let Some(k) = (0..order.len()).find(|&k| (order[k] == -1) != (own[k] == -1))
+        {
+            return Err(self.err(
+                g,
+                format!(
+                    "attribute '{attr}': value {} is {} but coordIndex {} there (the -1 \
+                     separators must be at the same places)",
+                    k + 1,
+                    own[k],
+                    if order[k] == -1 {
+                        "ends a polygon"
+                    } else {
+                        "does not"
+                    },
+                ),
+            ));
+        }
+        self.check_indices(
+            g,
+            attr,
+            &own,
+            values.len(),
+            if separated { -1 } else { 0 },
+            target,
+        )?;
+        Ok(Some(own))
+    }
+
+    /// The Normal vectors in world space: transformed by the inverse transpose of the linear
+    /// part of `m` (as its cofactor matrix, signed by the determinant, so that a singular scale
+    /// still gives finite normals). Not normalised.
+    fn world_normals(&self, normals: &Option<(Vec<DVec3>, Node)>, m: &DMat4) -> Res<Vec<DVec3>> {
+        let Some((normals, node)) = normals else {
+            return Ok(Vec::new());
+        };
+        let l = DMat3::from_mat4(*m);
+        let (a, b, c) = (l.x_axis, l.y_axis, l.z_axis);
+        let sign = if l.determinant() < 0.0 { -1.0 } else { 1.0 };
+        let cof = DMat3::from_cols(b.cross(c), c.cross(a), a.cross(b)) * sign;
+        normals
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| {
+                let w = if l == DMat3::IDENTITY { n } else { cof * n };
+                if w.is_finite() {
+                    Ok(w)
+                } else {
+                    Err(self.err(
+                        *node,
+                        format!("vector {} is not finite once transformed", k + 1),
+                    ))
+                }
+            })
+            .collect()
+    }
+
+    /// Every index in `lowest..count` (`lowest` is -1 where -1 separates polygons); `target`
+    /// names the node indexed.
     fn check_indices(
         &self,
         g: Node,
         attr: &str,
         index: &[i64],
-        points: usize,
+        count: usize,
         lowest: i64,
+        target: &str,
     ) -> Res<()> {
+        let unit = if target == "Normal" {
+            "vector"
+        } else {
+            "point"
+        };
         for (k, &i) in index.iter().enumerate() {
             if i < lowest {
                 let what = if lowest == -1 {
@@ -937,11 +1343,11 @@ impl<'a, 'i> Loader<'a, 'i> {
                     format!("attribute '{attr}': index {i} (value {}) {what}", k + 1),
                 ));
             }
-            if i >= 0 && i as u64 >= points as u64 {
+            if i >= 0 && i as u64 >= count as u64 {
                 return Err(self.err(
                     g,
                     format!(
-                        "attribute '{attr}': index {i} (value {}) is out of range: the Coordinate has {points} point(s)",
+                        "attribute '{attr}': index {i} (value {}) is out of range: the {target} has {count} {unit}(s)",
                         k + 1
                     ),
                 ));
@@ -1017,6 +1423,18 @@ fn view_rotation(dir: DVec3, up: DVec3) -> Option<DQuat> {
     let y = z.cross(x);
     let q = DQuat::from_mat3(&DMat3::from_cols(x, y, z)).normalize();
     q.is_finite().then_some(q)
+}
+
+/// Whether a url names a scheme (`http:`, `data:`, ...) rather than a file. A one-letter
+/// scheme is a Windows drive and counts as a file.
+fn has_scheme(url: &str) -> bool {
+    url.split_once(':').is_some_and(|(scheme, _)| {
+        scheme.len() > 1
+            && scheme.starts_with(|c: char| c.is_ascii_alphabetic())
+            && scheme
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '+' | '-' | '.'))
+    })
 }
 
 /// The values of an X3D multi-value field: separated by whitespace or commas.
