@@ -84,7 +84,11 @@ fn render(scene: &Scene, size: u32) -> Vec<[f64; 3]> {
         &prep.screen,
         &zb,
         &cam,
-        &Lighting::headlight(&cam),
+        // Matte: flat shading takes a highlight when Ks > 0.
+        &Lighting {
+            specular: 0.0,
+            ..Lighting::headlight(&cam)
+        },
         Shading::Flat,
         &textures,
         [0.0; 3],
