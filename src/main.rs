@@ -42,6 +42,9 @@ Examples:
   sightline render mesh.stl --view front --ortho 2.5 --size 800x600 -o front.png
   sightline render mesh.ply --eye -1,2,3 --target 0,0,0 --fill id -o ids.png
   sightline render bunny.obj --cam bunny.cam -o - > bunny.png
+  sightline render part.obj --method bsp --stroke --light=-1,2,1 --specular 0.3 -o part.svg
+  sightline render bunny.obj --cam bunny.cam --shading phong --specular 0.3 -o bunny.png
+  sightline render glass.x3d --method abuffer -o glass.png
   sightline info mesh.obj --view iso";
 
 #[derive(Parser)]
@@ -58,20 +61,21 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Render a scene to PNG with the z-buffer (the reference method).
+    /// Render a scene: PNG by an image-space method (the z-buffer is the reference), or exact
+    /// visible polygons as SVG, JSON or PNG (--method bsp).
     #[command(after_help = EXAMPLES)]
     Render(RenderArgs),
     /// Describe a scene: counts, closedness, bounds, culling, and which stages it needs.
     #[command(after_help = EXAMPLES)]
     Info(InfoArgs),
-    /// Compare a method's face ids with the z-buffer's at pixel centres, and time both.
+    /// Compare two methods' face ids at pixel centres (the z-buffer by default), and time both.
     #[command(
-        after_help = "Examples:\n  sightline compare fixtures/cube.obj --method bsp\n  sightline compare scene.obj --method painter --size 512x512"
+        after_help = "Examples:\n  sightline compare fixtures/cube.obj --method bsp\n  sightline compare scene.obj --method painter --size 512x512\n  sightline compare scene.obj --method warnock --against scanline"
     )]
     Compare(CompareArgs),
-    /// Time each stage (load, project + cull, z-buffer) and report triangles per second.
+    /// Time each stage (load, project + cull, then one method) and report triangles per second.
     #[command(
-        after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024"
+        after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024\n  sightline bench --soup 1000 --method bsp --repeat 3\n  sightline bench --sphere 100000 --method warnock --size 4096x4096"
     )]
     Bench(BenchArgs),
 }
