@@ -2096,3 +2096,17 @@ fn sliver_at_a_shared_corner_is_hidden() {
         / r(2, 1);
     assert_eq!(area, union_area(&shapes));
 }
+
+/// geo's union (i_overlay) panicked on the pieces of this case ("index out of bounds" in its
+/// solver), so drawing it (`BspMethod` + SVG) crashed: found by `determinism_long`. Regions now
+/// fall back to the unmerged rings where the union fails; the drawing must not panic and must
+/// stay byte-identical between runs.
+#[test]
+fn a_failing_union_falls_back_to_unmerged_rings() {
+    let case = Case {
+        kind: Kind::Slivers,
+        n: 5,
+        seed: 5776154719197170033,
+    };
+    check_determinism(&case).expect("the case has a scene");
+}

@@ -123,6 +123,30 @@ fn centroid(p: &Piece, s: &Samples) -> [f64; 2] {
     [s.col_of(x), s.row_of(y)]
 }
 
+thread_local! {
+    /// Set while a union runs whose panic is caught: the panic hook stays quiet then.
+    static IN_UNION: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// `geo`'s unary union, or `None` if it panicked.
+fn union_or_none(polys: &[geo::Polygon<f64>]) -> Option<geo::MultiPolygon<f64>> {
+    static QUIET_HOOK: std::sync::Once = std::sync::Once::new();
+    QUIET_HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !IN_UNION.with(|f| f.get()) {
+                previous(info);
+            }
+        }));
+    });
+    IN_UNION.with(|f| f.set(true));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        geo::algorithm::bool_ops::unary_union(polys)
+    }));
+    IN_UNION.with(|f| f.set(false));
+    result.ok()
+}
+
 /// Even-odd containment of a point in a ring set.
 fn ring_set_contains(rings: &[Vec<[f64; 2]>], [px, py]: [f64; 2]) -> bool {
     let mut inside = false;
@@ -205,7 +229,21 @@ fn merge_rings(rings: Vec<Vec<[f64; 2]>>) -> Vec<Vec<Vec<[f64; 2]>>> {
             )
         })
         .collect();
-    let merged = geo::algorithm::bool_ops::unary_union(&polys);
+    // geo's union (i_overlay) can panic on some inputs (an index overflow in its solver, met on
+    // slivers): then the group is drawn as its conforming rings, unmerged, which covers the
+    // same area. The panic is expected there, so it is not reported on stderr.
+    let Some(merged) = union_or_none(&polys) else {
+        return polys
+            .into_iter()
+            .map(|p| {
+                let mut ring: Vec<[f64; 2]> = p.exterior().coords().map(|c| [c.x, c.y]).collect();
+                if ring.len() > 1 && ring.first() == ring.last() {
+                    ring.pop();
+                }
+                vec![ring]
+            })
+            .collect();
+    };
     let open = |ls: &LineString<f64>| -> Vec<[f64; 2]> {
         let mut v: Vec<[f64; 2]> = ls.coords().map(|c| [c.x, c.y]).collect();
         // geo closes rings by repeating the first point; drawings do not.
