@@ -207,7 +207,7 @@ impl Piece {
     }
 
     /// [`Self::vertex_line_sign`] with `l`'s f64 coefficients computed once by the caller.
-    fn vertex_line_sign_with(&self, k: usize, l: &Line, la: &LineApprox) -> Ordering {
+    pub fn vertex_line_sign_with(&self, k: usize, l: &Line, la: &LineApprox) -> Ordering {
         if let Some([x, y]) = self.corners[k]
             && let Some(sign) = l.sign_at_grid(x, y)
         {
