@@ -157,6 +157,8 @@ fn seed_004_lighting_model() {
         diffuse: 0.6,
         specular: 0.5,
         shininess: 10.0,
+        headlight: None,
+        view: None,
         lights: vec![Light::Directional {
             // cos θ = 0.5 (60° from the normal), travelling towards -x, -z.
             direction: DVec3::new(-(3f64.sqrt()) / 2.0, 0.0, -0.5),

@@ -47,7 +47,13 @@ pub struct Lighting {
     pub specular: f64,
     /// Phong exponent n.
     pub shininess: f64,
+    /// A white directional light travelling this way (the camera's view direction for a
+    /// headlight), besides `lights`: kept apart so the common case needs no allocation.
+    pub headlight: Option<DVec3>,
     pub lights: Vec<Light>,
+    /// The unit direction towards the viewer when it is the same everywhere (orthographic
+    /// cameras); `None`: from each point to the eye (perspective).
+    pub view: Option<DVec3>,
 }
 
 impl Lighting {
@@ -59,10 +65,9 @@ impl Lighting {
             diffuse: super::shade::DIFFUSE,
             specular: 0.3,
             shininess: 32.0,
-            lights: vec![Light::Directional {
-                direction: camera.forward(),
-                intensity: [1.0; 3],
-            }],
+            headlight: Some(camera.forward()),
+            lights: Vec::new(),
+            view: view_of(camera),
         }
     }
 
@@ -70,20 +75,14 @@ impl Lighting {
     /// others, Ka and Kd of the flat renderer, the scene's Ks and n.
     pub fn of_scene(scene: &Scene, camera: &Camera) -> Lighting {
         let l = &scene.lights;
-        let mut lights = Vec::with_capacity(l.lights.len() + 1);
-        if l.headlight {
-            lights.push(Light::Directional {
-                direction: camera.forward(),
-                intensity: [1.0; 3],
-            });
-        }
-        lights.extend(l.lights.iter().copied());
         Lighting {
             ambient: super::shade::AMBIENT,
             diffuse: super::shade::DIFFUSE,
             specular: l.specular,
             shininess: l.shininess,
-            lights,
+            headlight: l.headlight.then(|| camera.forward()),
+            lights: l.lights.clone(),
+            view: view_of(camera),
         }
     }
 
@@ -122,14 +121,20 @@ impl Lighting {
         eye: DVec3,
         specular: bool,
     ) -> ([f64; 3], [f64; 3]) {
-        let s = (eye - point).normalize_or_zero();
+        let s = self
+            .view
+            .unwrap_or_else(|| (eye - point).normalize_or_zero());
         let mut n = normal.normalize_or_zero();
         if face.dot(s) < 0.0 {
             n = -n;
         }
         let mut lit = [self.ambient; 3];
         let mut spec = [0.0; 3];
-        for light in &self.lights {
+        let head = self.headlight.map(|direction| Light::Directional {
+            direction,
+            intensity: [1.0; 3],
+        });
+        for light in head.iter().chain(&self.lights) {
             let (l, i) = match *light {
                 Light::Directional {
                     direction,
@@ -171,6 +176,16 @@ impl Lighting {
     ) -> [f64; 3] {
         let (lit, spec) = self.terms(normal, point, eye, specular);
         combine(base, emissive, lit, spec)
+    }
+}
+
+/// The direction towards the viewer when it is the same at every point: orthographic cameras.
+fn view_of(camera: &Camera) -> Option<DVec3> {
+    match camera.projection {
+        crate::camera::Projection::Orthographic { .. } => {
+            Some(-camera.forward().normalize_or_zero())
+        }
+        crate::camera::Projection::Perspective { .. } => None,
     }
 }
 

@@ -1,7 +1,8 @@
-//! Flat shading with a headlight (seed 004): `I = emissive + diffuse·(ka + kd·|N·L|)`, with L the
-//! direction the camera looks from (a directional light over the viewer's shoulder), so coplanar
-//! faces get exactly the same shade whatever their size or place. The absolute value lights faces
-//! seen from behind (open or two-sided surfaces) as their front would be.
+//! Flat fills and id colours. A face's flat colour is the seed 004 model ([`super::lighting`])
+//! at its centroid with its normal turned towards the viewer (open and two-sided surfaces are
+//! lit on the side that is seen). With the default lights (the headlight, no specular) that is
+//! `emissive + diffuse·(Ka + Kd·max(N·L, 0))`, L the view direction: coplanar faces get exactly
+//! the same colour whatever their size or place.
 
 use crate::camera::Camera;
 use crate::scene::Scene;
@@ -12,17 +13,16 @@ pub const AMBIENT: f64 = 0.2;
 pub const DIFFUSE: f64 = 0.8;
 
 /// Flat colour (linear RGB, clamped to [0,1]) of `scene.faces[face]` seen by `camera`, under
-/// the scene's lights: with the default (the headlight alone, no specular) the formula above;
-/// otherwise the full model of [`super::lighting`] at the face's centroid.
+/// the scene's lights: the lighting model at the face's centroid ([`Lighting::flat_color`]),
+/// the one model every method fills faces with.
+///
+/// [`Lighting::flat_color`]: super::lighting::Lighting::flat_color
 pub fn flat_color(scene: &Scene, face: usize, camera: &Camera) -> [f64; 3] {
-    let f = &scene.faces[face];
-    if scene.lights != crate::scene::SceneLights::default() {
-        return super::lighting::Lighting::of_scene(scene, camera).flat_color(scene, f, camera.eye);
-    }
-    let m = &scene.materials[f.material as usize];
-    let n = scene.face_normal(f).normalize_or_zero();
-    let light = AMBIENT + DIFFUSE * n.dot(-camera.forward()).abs();
-    std::array::from_fn(|k| (m.emissive[k] + m.diffuse[k] * light).clamp(0.0, 1.0))
+    super::lighting::Lighting::of_scene(scene, camera).flat_color(
+        scene,
+        &scene.faces[face],
+        camera.eye,
+    )
 }
 
 /// The `--fill id` colour of a face id: id + 1 as 24-bit RGB, so black is the background.

@@ -490,13 +490,14 @@ impl super::VisibilityMethod for BspMethod {
         } else {
             let (visible, cs) = visible_set(screen);
             put("pieces", cs.inserted.into());
-            put("fragments", visible.pieces.len().into());
+            put("visible_pieces", visible.pieces.len().into());
             put("replaced", cs.replaced.into());
             put("overlap_tests", cs.overlap_tests.into());
             visible.pieces
         };
+        // Fragments of the painter order, or visible pieces: what is drawn, per polygon.
         put(
-            "fragments_per_polygon",
+            "drawn_pieces_per_polygon",
             (pieces.len() as f64 / screen.polys.len().max(1) as f64).into(),
         );
         put("visibility_seconds", t.elapsed().as_secs_f64().into());
@@ -529,7 +530,7 @@ impl super::VisibilityMethod for BspMethod {
         } else if self.merge_surfaces {
             // Coplanar faces of one colour and material read as one surface: one region.
             // One paint is what the output shows: the 8-bit colour, material and opacity.
-            let surface = surfaces(scene, screen, |poly| {
+            let surface = surfaces(scene, screen, camera.eye, |poly| {
                 let (color, opacity) = super::face_paint(scene, poly.face as usize, camera, fill);
                 (
                     crate::raster::shade::to_u8(color),

@@ -10,6 +10,7 @@ use crate::exact::Samples;
 use crate::exact::polygon::Piece;
 use crate::project::{ScreenPoly, ScreenScene};
 use crate::scene::{FaceId, Scene, newell_normal};
+use glam::DVec3;
 use std::cmp::Ordering;
 use std::collections::BTreeMap;
 
@@ -78,15 +79,19 @@ pub fn regions<K: Ord>(
     out
 }
 
-/// A surface label per screen polygon: polygons with equal `paint` whose faces lie in one plane
-/// of the scene, to 2^-20 of the scene's size (normal and offset rounded), share a label; labels
-/// are numbered in polygon order. This is a drawing choice outside the exactness contract: it
-/// never changes which face shows where, only which abutting regions of the same paint share a
-/// path. It is not exact coplanarity on purpose: CAD files written as decimals put the triangles
-/// of one flat face a rounding error off each other's plane, and their seams would show.
+/// A surface label per screen polygon: polygons with equal `paint` whose faces' world planes
+/// fall in the same bucket share a label (numbered in polygon order). The bucket is the plane's
+/// unit normal, turned towards the eye, and its offset, each rounded to 2^-20 (the offset of
+/// the scene's size): coplanar faces share it, and near-coplanar ones almost always do, except
+/// the rare pair that a rounding boundary separates, which then stays two paths.
+/// This is a drawing choice outside the exactness contract: it never changes which face shows
+/// where, only which abutting regions of the same paint share a path. It is not exact
+/// coplanarity on purpose: CAD files written as decimals put the triangles of one flat face a
+/// rounding error off each other's plane, and their seams would show.
 pub fn surfaces<P: Ord>(
     scene: &Scene,
     screen: &ScreenScene,
+    eye: DVec3,
     paint: impl Fn(&ScreenPoly) -> P,
 ) -> Vec<u32> {
     let size = scene
@@ -101,8 +106,13 @@ pub fn surfaces<P: Ord>(
     for poly in &screen.polys {
         let face = &scene.faces[poly.face as usize];
         let corners = scene.face_corners(face);
-        let n = newell_normal(corners.iter().map(|&i| scene.positions[i as usize])).normalize();
-        let d = n.dot(scene.positions[corners[0] as usize]) / size;
+        let p0 = scene.positions[corners[0] as usize];
+        let mut n = newell_normal(corners.iter().map(|&i| scene.positions[i as usize])).normalize();
+        // Opposite windings of one plane give opposite normals: turn both towards the eye.
+        if n.dot(eye - p0) < 0.0 {
+            n = -n;
+        }
+        let d = n.dot(p0) / size;
         let key = (paint(poly), [q(n.x), q(n.y), q(n.z), q(d)]);
         let label = *buckets.entry(key).or_insert_with(|| {
             next += 1;
