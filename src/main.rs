@@ -17,6 +17,9 @@ macro_rules! print {
 
 /// `println!` through [`print!`].
 macro_rules! println {
+    () => {
+        print!("\n")
+    };
     ($($arg:tt)*) => {{
         print!("{}\n", format_args!($($arg)*))
     }};

@@ -28,7 +28,8 @@ pub struct Piece {
     pub support: Plane,
     /// Boundary lines, counter-clockwise; vertex k is where `lines[k-1]` and `lines[k]` cross.
     pub lines: Vec<Line>,
-    /// The grid (x, y) of vertex k when it is an input corner: exact fast paths use it.
+    /// The grid (x, y) of vertex k when it is a grid point (an input corner, or two face edges
+    /// crossing exactly at a mesh vertex): exact fast paths use it.
     pub corners: Vec<Option<[i32; 2]>>,
     /// For line k, the grid (x, y) of the face edge it runs along, when it is one (both ends lie
     /// on the support plane): a sign that agrees at both ends holds all along it.
@@ -161,7 +162,7 @@ impl Piece {
     /// plane, q has the sign of that screen line (`c_S·q - c_q·S`, divided by `c_S > 0`).
     fn vertex_plane_sign_with(&self, k: usize, q: &Plane, qa: &LineApprox) -> Ordering {
         if let Some([x, y]) = self.corners[k]
-            && let Some(s) = grid_vertex_plane_sign(&self.support, x, y, q)
+            && let Some(s) = Line::Cut(*q, self.support).sign_at_grid(x, y)
         {
             return s;
         }
@@ -189,10 +190,9 @@ impl Piece {
             .flatten()
         {
             let [[px, py], [rx, ry]] = seg;
-            if let (Some(a), Some(b)) = (
-                grid_vertex_plane_sign(&self.support, px, py, q),
-                grid_vertex_plane_sign(&self.support, rx, ry, q),
-            ) && a == b
+            let on_s = Line::Cut(*q, self.support);
+            if let (Some(a), Some(b)) = (on_s.sign_at_grid(px, py), on_s.sign_at_grid(rx, ry))
+                && a == b
             {
                 return a;
             }
@@ -469,8 +469,8 @@ fn point_of(l: &Line, m: &Line) -> [f64; 3] {
     }
 }
 
-/// Where two face-edge lines cross, when that is a grid point; exact in i128 (edge coefficients
-/// are below 2^26 and 2^55).
+/// Where two face-edge lines cross, when that is a grid point; exact in i128, every product
+/// checked (edge coefficients are grid differences and their cross products).
 fn grid_crossing(l: &Line, m: &Line) -> Option<[i32; 2]> {
     let (Line::Edge(p), Line::Edge(q)) = (l, m) else {
         return None;
@@ -513,19 +513,6 @@ pub fn same_plane(s: &Plane, q: &Plane) -> bool {
     s.a as i128 * qc == q.a as i128 * sc
         && s.b as i128 * qc == q.b as i128 * sc
         && s.d * qc == q.d * sc
-}
-
-/// The sign of `q` at the point of `s` above grid (x, y), exactly in i128:
-/// `sign(c_s·(q_a x + q_b y + q_d) - q_c·(s_a x + s_b y + s_d))` (the common factor 1/c_s > 0
-/// dropped). Magnitudes stay below 2^127 for grid planes; `None` if an operation would overflow.
-fn grid_vertex_plane_sign(s: &Plane, x: i32, y: i32, q: &Plane) -> Option<Ordering> {
-    let (x, y) = (x as i128, y as i128);
-    let qv = (q.a as i128 * x + q.b as i128 * y).checked_add(q.d)?;
-    let sv = (s.a as i128 * x + s.b as i128 * y).checked_add(s.d)?;
-    let v = (s.c as i128)
-        .checked_mul(qv)?
-        .checked_sub((q.c as i128).checked_mul(sv)?)?;
-    Some(v.cmp(&0))
 }
 
 /// Cuts a simple grid polygon (counter-clockwise, y up, no repeated consecutive points) into

@@ -136,8 +136,9 @@ impl Line {
         }
     }
 
-    /// The sign of the line at grid point (x, y), exactly in i128; `None` if an operation would
-    /// overflow (never for grid planes: |a·x + b·y + d| < 2^91, times c < 2^32).
+    /// The sign of the line at grid point (x, y), exactly in i128, every operation checked;
+    /// `None` if one would overflow (possible for cut lines of steep planes: c up to about 2^51
+    /// times |a·x + b·y + d| up to about 2^77), and the caller then decides another way.
     pub fn sign_at_grid(&self, x: i32, y: i32) -> Option<Ordering> {
         let (x, y) = (x as i128, y as i128);
         let at = |p: &Plane| (p.a as i128 * x + p.b as i128 * y).checked_add(p.d);
@@ -174,12 +175,6 @@ impl Line {
     fn exact_row(&self) -> [I512; 4] {
         let [a, b, d] = self.exact();
         [a, b, zero(), d]
-    }
-
-    /// Exact value of the line's equation at a grid point (its z is ignored).
-    pub fn side_of_point(&self, p: GridPoint) -> Ordering {
-        let [a, b, d] = self.exact();
-        (a * wide(p.x as i128) + b * wide(p.y as i128) + d).cmp(&zero())
     }
 }
 
