@@ -378,3 +378,23 @@ fn piece_sign_shortcuts_agree_with_the_reference() {
     eprintln!("{zeros} exact zeros");
     assert!(zeros > 1000, "only {zeros} exact zeros tried");
 }
+
+/// Two lines so nearly parallel that the f64 denominator cancels to 0 still get a finite f64
+/// crossing (from exact integers), close to the exact one: vertices drawn never hold NaN.
+#[test]
+fn crossing_f64_of_nearly_parallel_lines_is_finite() {
+    use sightline::exact::predicates::crossing_f64;
+    let big = 1i64 << 60;
+    let edge = |a: i64, b: i64, d: i128| Line::Edge(Plane { a, b, c: 0, d });
+    // det = (2^60 + 1)(2^60 - 1) - 2^60·2^60 = -1, but both products round to 2^120 in f64.
+    let l = edge(big + 1, big, 3);
+    let m = edge(big, big - 1, 5);
+    let [x, y] = crossing_f64(&l, &m);
+    assert!(x.is_finite() && y.is_finite(), "{x} {y}");
+    let (rx, ry) = crossing([&l, &m]).unwrap();
+    let close = |v: f64, r: &Q| {
+        let r: f64 = num_traits::ToPrimitive::to_f64(r).unwrap();
+        (v - r).abs() <= 1e-9 * r.abs().max(1.0)
+    };
+    assert!(close(x, &rx) && close(y, &ry), "{x} {y} vs {rx} {ry}");
+}

@@ -433,7 +433,20 @@ pub fn depth_order_at(m: [&Line; 2], s: &Plane, t: &Plane) -> Option<Ordering> {
 /// decision. The same lines in either order, or with their sides swapped, give the same bits.
 pub fn crossing_f64(l: &Line, m: &Line) -> [f64; 2] {
     let (den, nx, ny) = crossing_terms(l.filtered(), m.filtered());
-    [nx / den, ny / den]
+    let (x, y) = (nx / den, ny / den);
+    if x.is_finite() && y.is_finite() {
+        return [x, y];
+    }
+    // Nearly parallel lines whose f64 denominator cancelled to 0: Cramer's rule in exact
+    // integers, converted once (the exact denominator is a nonzero integer, so the quotients
+    // are finite). Lines that are exactly parallel have no crossing: NaN, never used.
+    let ([a0, b0, d0], [a1, b1, d1]) = (l.exact(), m.exact());
+    let den = a0 * b1 - a1 * b0;
+    if den == zero() {
+        return [f64::NAN; 2];
+    }
+    let f = |v: I512| -> f64 { v.as_() };
+    [f(b0 * d1 - b1 * d0) / f(den), f(a1 * d0 - a0 * d1) / f(den)]
 }
 
 /// Cramer's rule for a0·x + b0·y + d0 = 0, a1·x + b1·y + d1 = 0: (denominator, x and y
