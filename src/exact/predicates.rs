@@ -350,34 +350,23 @@ fn combine_signs(a: Ordering, b: Ordering) -> Ordering {
 /// Which side of line `l` the screen point where `m0` and `m1` cross lies on (`Greater`: where
 /// `l`'s equation is positive). `None` when `m0` and `m1` are parallel.
 pub fn line_side(m: [&Line; 2], l: &Line) -> Option<Ordering> {
-    let f = [m[0].filtered(), m[1].filtered(), l.filtered()];
-    let exact = || [m[0].exact(), m[1].exact(), l.exact()];
+    if let Some(s) = line_side_filtered(m, l) {
+        return Some(s);
+    }
+    count_fallback();
     // Crossing point (x, y) of a0 x + b0 y + d0 = 0 and a1 x + b1 y + d1 = 0:
     // l at it = det3(m0, m1, l) / D with D = a0 b1 - a1 b0.
-    let d_sign = {
-        let (a0, b0, a1, b1) = (f[0][0], f[0][1], f[1][0], f[1][1]);
-        let det = a0.value * b1.value - a1.value * b0.value;
-        let perm = a0.magnitude * b1.magnitude + a1.magnitude * b0.magnitude;
-        match filtered_sign_of((det, perm)) {
-            Some(s) => s,
-            None => {
-                let e = exact();
-                (e[0][0] * e[1][1] - e[1][0] * e[0][1]).cmp(&zero())
-            }
-        }
-    };
+    let e = [m[0].exact(), m[1].exact(), l.exact()];
+    let d_sign = (e[0][0] * e[1][1] - e[1][0] * e[0][1]).cmp(&zero());
     if d_sign == Ordering::Equal {
         return None;
     }
-    let det_sign = match filtered_sign_of(det3_f64(f)) {
-        Some(s) => s,
-        None => det3_exact(exact()).cmp(&zero()),
-    };
-    Some(combine_signs(det_sign, d_sign))
+    Some(combine_signs(det3_exact(e).cmp(&zero()), d_sign))
 }
 
-/// [`line_side`] by the f64 filter alone: `None` where the filter cannot decide (not counted as
-/// a fallback: the caller has other ways, and then calls [`line_side`]). Never `Equal`.
+/// [`line_side`] by the f64 filter alone (both determinants): `None` where it cannot decide
+/// (not counted as a fallback: the caller may have other ways). Never `Equal`. [`line_side`]
+/// is this, then the exact computation.
 pub fn line_side_filtered(m: [&Line; 2], l: &Line) -> Option<Ordering> {
     let f = [m[0].filtered(), m[1].filtered(), l.filtered()];
     let (a0, b0, a1, b1) = (f[0][0], f[0][1], f[1][0], f[1][1]);
@@ -402,31 +391,20 @@ pub fn depth_order_filtered(m: [&Line; 2], s: &Plane, t: &Plane) -> Option<Order
 /// (support planes). `None` when the lines are parallel.
 pub fn depth_order_at(m: [&Line; 2], s: &Plane, t: &Plane) -> Option<Ordering> {
     debug_assert!(s.c > 0 && t.c > 0);
+    if let Some(order) = depth_order_filtered(m, s, t) {
+        return Some(order);
+    }
+    count_fallback();
     // The 3D point on s above the crossing: s ∩ m0 ∩ m1. It is nearer than t's point (smaller
     // z) exactly when it lies on t's negative side, since t's equation grows with z (c > 0):
     // the order is the sign of t there, det4(s, m0, m1, t)/D by Cramer's rule.
-    let rows = [plane_filtered(s), m[0].filtered_row(), m[1].filtered_row()];
-    let exact_rows = || [plane_exact(s), m[0].exact_row(), m[1].exact_row()];
-    let normals = rows.map(|r| [r[0], r[1], r[2]]);
-    let d_sign = match filtered_sign_of(det3_f64(normals)) {
-        Some(s) => s,
-        None => {
-            let e = exact_rows();
-            det3_exact(e.map(|r| [r[0], r[1], r[2]])).cmp(&zero())
-        }
-    };
+    let e = [plane_exact(s), m[0].exact_row(), m[1].exact_row()];
+    let d_sign = det3_exact(e.map(|r| [r[0], r[1], r[2]])).cmp(&zero());
     if d_sign == Ordering::Equal {
         return None;
     }
-    let m4 = [rows[0], rows[1], rows[2], plane_filtered(t)];
-    let det_sign = match filtered_sign_of(det4_f64(m4)) {
-        Some(s) => s,
-        None => {
-            let e = exact_rows();
-            det4_exact([e[0], e[1], e[2], plane_exact(t)]).cmp(&zero())
-        }
-    };
-    Some(combine_signs(det_sign, d_sign))
+    let det = det4_exact([e[0], e[1], e[2], plane_exact(t)]);
+    Some(combine_signs(det.cmp(&zero()), d_sign))
 }
 
 /// Where two lines cross, in f64 grid coordinates, rounded: for output and bounds, never for a
