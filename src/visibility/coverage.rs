@@ -19,6 +19,7 @@
 //! Pieces are bucketed on a uniform screen grid so that a new piece meets only the visible
 //! pieces whose bounds overlap its own; the bounds are a filter, every decision is exact.
 
+use super::grid::BoxGrid;
 use crate::exact::polygon::{Piece, Split, separated};
 use crate::project::ScreenScene;
 use std::cmp::Reverse;
@@ -56,10 +57,7 @@ pub struct Coverage<'a> {
     /// Every piece ever made visible; `None` once replaced.
     visible: Vec<Option<Piece>>,
     bounds: Vec<[f64; 4]>,
-    origin: [f64; 2],
-    cell: [f64; 2],
-    cells: usize,
-    buckets: Vec<Vec<u32>>,
+    grid: BoxGrid,
     /// Per visible piece, the last query that met it (dedupes across buckets).
     seen: Vec<u32>,
     query: u32,
@@ -69,34 +67,12 @@ pub struct Coverage<'a> {
 impl<'a> Coverage<'a> {
     /// An empty map sized for `pieces` (only their bounds and number are read).
     pub fn new<'p>(screen: &'a ScreenScene, pieces: impl IntoIterator<Item = &'p Piece>) -> Self {
-        let mut all = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
-        let mut n = 0usize;
-        for p in pieces {
-            let b = bounds(p);
-            all = [
-                all[0].min(b[0]),
-                all[1].min(b[1]),
-                all[2].max(b[2]),
-                all[3].max(b[3]),
-            ];
-            n += 1;
-        }
-        if n == 0 {
-            all = [0.0, 0.0, 1.0, 1.0];
-        }
-        let cells = ((n as f64).sqrt() as usize).clamp(1, 512);
-        let size = [
-            ((all[2] - all[0]) / cells as f64).max(1.0),
-            ((all[3] - all[1]) / cells as f64).max(1.0),
-        ];
+        let boxes: Vec<[f64; 4]> = pieces.into_iter().map(bounds).collect();
         Coverage {
             screen,
             visible: Vec::new(),
             bounds: Vec::new(),
-            origin: [all[0], all[1]],
-            cell: size,
-            cells,
-            buckets: vec![Vec::new(); cells * cells],
+            grid: BoxGrid::over(&boxes, boxes.len()),
             seen: Vec::new(),
             query: 0,
             stats: CoverageStats::default(),
@@ -108,47 +84,30 @@ impl<'a> Coverage<'a> {
         self.visible.into_iter().flatten().collect()
     }
 
-    fn cell_range(&self, b: &[f64; 4]) -> (usize, usize, usize, usize) {
-        let c =
-            |v: f64, o: f64, s: f64| (((v - o) / s).floor().max(0.0) as usize).min(self.cells - 1);
-        (
-            c(b[0], self.origin[0], self.cell[0]),
-            c(b[2], self.origin[0], self.cell[0]),
-            c(b[1], self.origin[1], self.cell[1]),
-            c(b[3], self.origin[1], self.cell[1]),
-        )
-    }
-
     /// The live visible pieces whose bounds overlap `b`, in index order.
     fn near(&mut self, b: &[f64; 4]) -> Vec<u32> {
-        let (i0, i1, j0, j1) = self.cell_range(b);
         self.query += 1;
         let mut near: Vec<u32> = Vec::new();
-        for j in j0..=j1 {
-            for i in i0..=i1 {
-                let bucket = &mut self.buckets[j * self.cells + i];
-                // Replaced pieces leave their buckets lazily, here.
-                bucket.retain(|&v| self.visible[v as usize].is_some());
-                for &v in bucket.iter() {
-                    if self.seen[v as usize] != self.query && overlap(&self.bounds[v as usize], b) {
-                        self.seen[v as usize] = self.query;
-                        near.push(v);
-                    }
+        let (visible, bounds, seen, query) =
+            (&self.visible, &self.bounds, &mut self.seen, self.query);
+        // Replaced pieces leave their cells lazily, here.
+        self.grid.visit(
+            b,
+            |v| visible[v as usize].is_some(),
+            |v| {
+                if seen[v as usize] != query && overlap(&bounds[v as usize], b) {
+                    seen[v as usize] = query;
+                    near.push(v);
                 }
-            }
-        }
+            },
+        );
         near.sort_unstable();
         near
     }
 
     fn add(&mut self, piece: Piece, pb: [f64; 4]) -> u32 {
         let index = self.visible.len() as u32;
-        let (i0, i1, j0, j1) = self.cell_range(&pb);
-        for j in j0..=j1 {
-            for i in i0..=i1 {
-                self.buckets[j * self.cells + i].push(index);
-            }
-        }
+        self.grid.insert(index, &pb);
         self.visible.push(Some(piece));
         self.bounds.push(pb);
         self.seen.push(0);

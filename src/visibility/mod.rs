@@ -15,6 +15,7 @@
 
 pub mod bsp;
 pub mod coverage;
+mod grid;
 pub mod painter;
 pub mod regions;
 

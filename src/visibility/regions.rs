@@ -6,6 +6,7 @@
 //! millionth of a pixel), and each region lists the input faces whose pieces lie in it.
 
 use super::coverage::bounds;
+use super::grid::BoxGrid;
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
 use crate::project::{ScreenPoly, ScreenScene};
@@ -179,7 +180,10 @@ fn ring_set_contains(rings: &[Vec<[f64; 2]>], [px, py]: [f64; 2]) -> bool {
 fn conforming_rings(pieces: &[&Piece], s: &Samples) -> Vec<Vec<[f64; 2]>> {
     let px = |[x, y]: [f64; 2]| [s.col_of(x), s.row_of(y)];
     let boxes: Vec<[f64; 4]> = pieces.iter().map(|p| bounds(p)).collect();
-    let grid = BoxGrid::new(&boxes);
+    let mut grid = BoxGrid::over(&boxes, boxes.len());
+    for (i, b) in boxes.iter().enumerate() {
+        grid.insert(i as u32, b);
+    }
     let mut near: Vec<usize> = Vec::new();
     let mut seen = vec![usize::MAX; pieces.len()];
     pieces
@@ -188,19 +192,24 @@ fn conforming_rings(pieces: &[&Piece], s: &Samples) -> Vec<Vec<[f64; 2]>> {
         .map(|(a, pa)| {
             // The pieces whose bounds meet this one's: only they can have a vertex on its edges.
             near.clear();
-            grid.visit(&boxes[a], |b| {
-                let (ba, bb) = (&boxes[a], &boxes[b]);
-                if b != a
-                    && seen[b] != a
-                    && ba[0] <= bb[2]
-                    && bb[0] <= ba[2]
-                    && ba[1] <= bb[3]
-                    && bb[1] <= ba[3]
-                {
-                    seen[b] = a;
-                    near.push(b);
-                }
-            });
+            grid.visit(
+                &boxes[a],
+                |_| true,
+                |b| {
+                    let b = b as usize;
+                    let (ba, bb) = (&boxes[a], &boxes[b]);
+                    if b != a
+                        && seen[b] != a
+                        && ba[0] <= bb[2]
+                        && bb[0] <= ba[2]
+                        && ba[1] <= bb[3]
+                        && bb[1] <= ba[3]
+                    {
+                        seen[b] = a;
+                        near.push(b);
+                    }
+                },
+            );
             near.sort_unstable();
             let n = pa.len();
             let mut ring = Vec::with_capacity(n);
@@ -236,70 +245,6 @@ fn conforming_rings(pieces: &[&Piece], s: &Samples) -> Vec<Vec<[f64; 2]>> {
             ring
         })
         .collect()
-}
-
-/// A uniform grid over boxes (x0, y0, x1, y1): each box is listed in the cells it covers, so
-/// the boxes near a box are found in time proportional to their number.
-struct BoxGrid {
-    origin: [f64; 2],
-    cell: [f64; 2],
-    cells: usize,
-    buckets: Vec<Vec<usize>>,
-}
-
-impl BoxGrid {
-    fn new(boxes: &[[f64; 4]]) -> BoxGrid {
-        let mut all = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
-        for b in boxes {
-            all = [
-                all[0].min(b[0]),
-                all[1].min(b[1]),
-                all[2].max(b[2]),
-                all[3].max(b[3]),
-            ];
-        }
-        let cells = ((boxes.len() as f64).sqrt() as usize).clamp(1, 256);
-        let cell = [
-            ((all[2] - all[0]) / cells as f64).max(1.0),
-            ((all[3] - all[1]) / cells as f64).max(1.0),
-        ];
-        let mut grid = BoxGrid {
-            origin: [all[0], all[1]],
-            cell,
-            cells,
-            buckets: vec![Vec::new(); cells * cells],
-        };
-        for (i, b) in boxes.iter().enumerate() {
-            let (i0, i1, j0, j1) = grid.range(b);
-            for j in j0..=j1 {
-                for c in i0..=i1 {
-                    grid.buckets[j * cells + c].push(i);
-                }
-            }
-        }
-        grid
-    }
-
-    fn range(&self, b: &[f64; 4]) -> (usize, usize, usize, usize) {
-        let c =
-            |v: f64, o: f64, s: f64| (((v - o) / s).floor().max(0.0) as usize).min(self.cells - 1);
-        (
-            c(b[0], self.origin[0], self.cell[0]),
-            c(b[2], self.origin[0], self.cell[0]),
-            c(b[1], self.origin[1], self.cell[1]),
-            c(b[3], self.origin[1], self.cell[1]),
-        )
-    }
-
-    /// Calls `f` with every box listed in a cell that `b` covers (a box may come more than once).
-    fn visit(&self, b: &[f64; 4], mut f: impl FnMut(usize)) {
-        let (i0, i1, j0, j1) = self.range(b);
-        for j in j0..=j1 {
-            for c in i0..=i1 {
-                self.buckets[j * self.cells + c].iter().for_each(|&i| f(i));
-            }
-        }
-    }
 }
 
 /// The union of one group's disjoint convex rings (pixel coordinates) as regions, each an outer

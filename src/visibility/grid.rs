@@ -1,0 +1,75 @@
+//! A uniform grid over screen boxes (x0, y0, x1, y1): each box is listed in every cell it
+//! covers, so the boxes near a box are found in time proportional to how many there are. Boxes
+//! are a filter here, never a decision: callers test what the grid returns exactly.
+
+/// The grid. Entries are `u32` indices into the caller's own list of boxes.
+pub(crate) struct BoxGrid {
+    origin: [f64; 2],
+    cell: [f64; 2],
+    cells: usize,
+    buckets: Vec<Vec<u32>>,
+}
+
+impl BoxGrid {
+    /// An empty grid of about `count` cells over the union of `boxes` (at most 512 x 512 cells,
+    /// at least one grid unit wide).
+    pub fn over<'b>(boxes: impl IntoIterator<Item = &'b [f64; 4]>, count: usize) -> BoxGrid {
+        let mut all = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+        for b in boxes {
+            all = [
+                all[0].min(b[0]),
+                all[1].min(b[1]),
+                all[2].max(b[2]),
+                all[3].max(b[3]),
+            ];
+        }
+        if all[0] > all[2] {
+            all = [0.0, 0.0, 1.0, 1.0];
+        }
+        let cells = ((count as f64).sqrt() as usize).clamp(1, 512);
+        BoxGrid {
+            origin: [all[0], all[1]],
+            cell: [
+                ((all[2] - all[0]) / cells as f64).max(1.0),
+                ((all[3] - all[1]) / cells as f64).max(1.0),
+            ],
+            cells,
+            buckets: vec![Vec::new(); cells * cells],
+        }
+    }
+
+    /// The cells (column range, row range) a box covers, clamped to the grid.
+    fn range(&self, b: &[f64; 4]) -> (usize, usize, usize, usize) {
+        let c =
+            |v: f64, o: f64, s: f64| (((v - o) / s).floor().max(0.0) as usize).min(self.cells - 1);
+        (
+            c(b[0], self.origin[0], self.cell[0]),
+            c(b[2], self.origin[0], self.cell[0]),
+            c(b[1], self.origin[1], self.cell[1]),
+            c(b[3], self.origin[1], self.cell[1]),
+        )
+    }
+
+    /// Lists entry `index` in every cell its box `b` covers.
+    pub fn insert(&mut self, index: u32, b: &[f64; 4]) {
+        let (i0, i1, j0, j1) = self.range(b);
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                self.buckets[j * self.cells + i].push(index);
+            }
+        }
+    }
+
+    /// Calls `f` with every entry listed in a cell that `b` covers (an entry may come more than
+    /// once), first dropping from those cells the entries `keep` rejects.
+    pub fn visit(&mut self, b: &[f64; 4], keep: impl Fn(u32) -> bool, mut f: impl FnMut(u32)) {
+        let (i0, i1, j0, j1) = self.range(b);
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let bucket = &mut self.buckets[j * self.cells + i];
+                bucket.retain(|&v| keep(v));
+                bucket.iter().for_each(|&v| f(v));
+            }
+        }
+    }
+}
