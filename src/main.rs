@@ -632,6 +632,11 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
         );
         use sightline::raster::lighting;
         let textured = scene.material_textures.iter().any(Option::is_some);
+        if textured && a.method == Method::Abuffer && a.fill == Fill::Shade {
+            eprintln!(
+                "warning: the A-buffer blends flat colours: textures are not applied (use --method zbuffer, scanline or warnock)"
+            );
+        }
         let image = match r.blended {
             Some(colors) => colors
                 .into_iter()
