@@ -20,7 +20,9 @@ use super::predicates::{
 use super::{GridPoint, Plane};
 use std::cmp::Ordering;
 
-/// A convex piece of a face. See the module docs.
+/// A convex piece of a face. See the module docs. Pieces are made only here (`from_convex` and
+/// the splits), which keep `lines`, `corners`, `segments`, `points` and `line_approx` parallel;
+/// the caches are crate-private so that nothing else can make them disagree.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Piece {
     /// Index of the screen polygon (face) it belongs to.
@@ -40,9 +42,9 @@ pub struct Piece {
     /// is within e of (x, y) in each coordinate (e = 0 at grid corners, infinite where the
     /// crossing is too ill-conditioned to bound). Computed once when the vertex is made: sign
     /// tests against many lines then cost a dot product each ([`LineApprox::sign_at`]).
-    pub points: Vec<[f64; 3]>,
+    pub(crate) points: Vec<[f64; 3]>,
     /// `lines[k].approx()`, computed once: other pieces are tested against these lines.
-    pub line_approx: Vec<LineApprox>,
+    pub(crate) line_approx: Vec<LineApprox>,
 }
 
 /// Where a piece lies relative to a plane or a line.
