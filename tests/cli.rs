@@ -539,3 +539,38 @@ fn shading_modes_change_the_png() {
     assert_ne!(flat, phong);
     assert_ne!(gouraud, phong);
 }
+
+/// `-o -` into a reader that stopped early ends quietly with success, like a printed report.
+#[test]
+fn png_to_a_closed_standard_output_is_not_an_error() {
+    use std::io::Read;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sightline"))
+        .args([
+            "render",
+            "fixtures/primitives.x3d",
+            "--size",
+            "3000x3000",
+            "-o",
+            "-",
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Read a few bytes of the PNG (> 64 KiB, more than a pipe holds), then hang up.
+    let mut stdout = child.stdout.take().unwrap();
+    let mut head = [0u8; 8];
+    stdout.read_exact(&mut head).unwrap();
+    assert_eq!(&head, b"\x89PNG\r\n\x1a\n");
+    drop(stdout);
+    let status = child.wait().unwrap();
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
+    assert!(status.success(), "{status:?}: {err}");
+    assert!(!err.contains("error") && !err.contains("panicked"), "{err}");
+}

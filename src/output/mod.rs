@@ -19,8 +19,11 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     };
     if path.as_os_str() == "-" {
         let mut out = std::io::stdout().lock();
-        out.write_all(bytes).map_err(io_err)?;
-        return out.flush().map_err(io_err);
+        return match out.write_all(bytes).and_then(|()| out.flush()) {
+            // The reader stopped early (`| head`): it wanted no more, as Unix tools treat it.
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+            other => other.map_err(io_err),
+        };
     }
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
