@@ -291,6 +291,35 @@ impl<'a> Parser<'a> {
         Ok((v, tex, nor))
     }
 
+    /// Index 0 is an error; a negative index counts back from the `defined` items before this
+    /// line (resolved 0-based here, or an error if it reaches past the first); a positive one is
+    /// the caller's (`None`).
+    fn zero_or_relative(
+        &self,
+        i: i64,
+        defined: usize,
+        what: &str,
+        plural: &str,
+        line: usize,
+    ) -> Result<Option<u32>, LoadError> {
+        if i == 0 {
+            return Err(self.err(line, format!("{what} index 0 (OBJ indices start at 1)")));
+        }
+        if i > 0 {
+            return Ok(None);
+        }
+        let abs = i.unsigned_abs();
+        if abs > defined as u64 {
+            return Err(self.err(
+                line,
+                format!(
+                    "{what} index {i} out of range: only {defined} {plural} are defined before this line"
+                ),
+            ));
+        }
+        Ok(Some((defined as u64 - abs) as u32))
+    }
+
     /// A `vt` or `vn` index of a corner (syntax already checked): 0-based, or `NONE` when empty.
     fn attr_index(
         &self,
@@ -302,20 +331,10 @@ impl<'a> Parser<'a> {
         let Some(i) = part.filter(|p| !p.is_empty()).and_then(parse_int) else {
             return Ok(NONE);
         };
-        if i == 0 {
-            return Err(self.err(line, format!("{what} index 0 (OBJ indices start at 1)")));
-        }
-        if i < 0 {
-            let abs = i.unsigned_abs();
-            if abs > defined as u64 {
-                return Err(self.err(
-                    line,
-                    format!(
-                        "{what} index {i} out of range: only {defined} {what}s are defined before this line"
-                    ),
-                ));
-            }
-            return Ok((defined as u64 - abs) as u32);
+        if let Some(resolved) =
+            self.zero_or_relative(i, defined, what, &format!("{what}s"), line)?
+        {
+            return Ok(resolved);
         }
         // Checked against the whole file at the end; NONE - 1 would be ambiguous, so refuse it.
         if i as u64 >= NONE as u64 {
@@ -344,20 +363,8 @@ impl<'a> Parser<'a> {
         let Some(i) = parse_int(v) else {
             return Err(self.err(line, format!("bad vertex index '{}'", show(t))));
         };
-        if i == 0 {
-            return Err(self.err(line, "vertex index 0 (OBJ indices start at 1)"));
-        }
-        if i < 0 {
-            let abs = i.unsigned_abs();
-            if abs > defined as u64 {
-                return Err(self.err(
-                    line,
-                    format!(
-                        "vertex index {i} out of range: only {defined} vertices are defined before this line"
-                    ),
-                ));
-            }
-            return Ok((defined as u64 - abs) as u32);
+        if let Some(resolved) = self.zero_or_relative(i, defined, "vertex", "vertices", line)? {
+            return Ok(resolved);
         }
         let i = i as u64;
         if i > u32::MAX as u64 {
