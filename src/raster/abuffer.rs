@@ -42,7 +42,7 @@ use crate::camera::Camera;
 use crate::exact::Fallbacks;
 use crate::pipeline::Fill;
 use crate::project::ScreenScene;
-use crate::raster::shade::{flat_color, id_color};
+use crate::raster::shade::face_paint;
 use crate::scene::Scene;
 
 /// What a polygon's fragments carry besides depth.
@@ -61,24 +61,17 @@ impl Paint {
     }
 }
 
-/// Each screen polygon's paint: with `Fill::Shade` its flat colour ([`flat_color`]) and its
-/// material's transparency; with `Fill::Id` its id colour, opaque (blending id labels would show
-/// ids that do not exist).
+/// Each screen polygon's paint: its face's colour and transparency ([`face_paint`]).
 pub fn paints(scene: &Scene, screen: &ScreenScene, camera: &Camera, fill: Fill) -> Vec<Paint> {
     screen
         .polys
         .iter()
-        .map(|p| match fill {
-            Fill::Shade => Paint {
-                color: flat_color(scene, p.face as usize, camera),
-                transparency: scene.materials[scene.faces[p.face as usize].material as usize]
-                    .transparency
-                    .clamp(0.0, 1.0),
-            },
-            Fill::Id => Paint {
-                color: id_color(p.id).map(|c| c as f64 / 255.0),
-                transparency: 0.0,
-            },
+        .map(|p| {
+            let (color, transparency) = face_paint(scene, p.face as usize, camera, fill);
+            Paint {
+                color,
+                transparency,
+            }
         })
         .collect()
 }

@@ -5,6 +5,7 @@
 //! the same colour whatever their size or place.
 
 use crate::camera::Camera;
+use crate::pipeline::Fill;
 use crate::scene::Scene;
 
 /// Ambient coefficient.
@@ -23,6 +24,25 @@ pub fn flat_color(scene: &Scene, face: usize, camera: &Camera) -> [f64; 3] {
         &scene.faces[face],
         camera.eye,
     )
+}
+
+/// The colour and the transparency (in [0, 1]) every method gives `scene.faces[face]`: its flat
+/// colour and its material's transparency, or with `Fill::Id` its id label, opaque (blending
+/// labels would show ids that do not exist).
+pub fn face_paint(scene: &Scene, face: usize, camera: &Camera, fill: Fill) -> ([f64; 3], f64) {
+    match fill {
+        Fill::Shade => {
+            let m = &scene.materials[scene.faces[face].material as usize];
+            (
+                flat_color(scene, face, camera),
+                m.transparency.clamp(0.0, 1.0),
+            )
+        }
+        Fill::Id => (
+            id_color(scene.faces[face].id).map(|c| c as f64 / 255.0),
+            0.0,
+        ),
+    }
 }
 
 /// The `--fill id` colour of a face id: id + 1 as 24-bit RGB, so black is the background.

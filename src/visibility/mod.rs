@@ -27,7 +27,6 @@ use crate::exact::{GridPoint, Samples};
 use crate::output::drawing::Drawing;
 use crate::pipeline::Fill;
 use crate::project::ScreenScene;
-use crate::raster::shade::{flat_color, id_color};
 use crate::scene::Scene;
 
 /// A visibility strategy.
@@ -72,22 +71,13 @@ pub fn pixel_ring(samples: &Samples, corners: &[GridPoint]) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// The colour and opacity every method gives a face. With `Fill::Id` the colour is the id label
-/// and the opacity 1: blending labels would show ids that do not exist.
+/// The colour and opacity every method gives a face ([`shade::face_paint`], with opacity
+/// `1 - transparency`).
+///
+/// [`shade::face_paint`]: crate::raster::shade::face_paint
 pub fn face_paint(scene: &Scene, face: usize, camera: &Camera, fill: Fill) -> ([f64; 3], f64) {
-    match fill {
-        Fill::Shade => {
-            let m = &scene.materials[scene.faces[face].material as usize];
-            (
-                flat_color(scene, face, camera),
-                (1.0 - m.transparency).clamp(0.0, 1.0),
-            )
-        }
-        Fill::Id => (
-            id_color(scene.faces[face].id).map(|c| c as f64 / 255.0),
-            1.0,
-        ),
-    }
+    let (color, transparency) = crate::raster::shade::face_paint(scene, face, camera, fill);
+    (color, 1.0 - transparency)
 }
 
 /// The background every method uses: black for `Fill::Id` (the id contract), none otherwise
