@@ -90,11 +90,20 @@ impl Lighting {
     /// when Ks > 0 (seen from the camera's eye).
     pub fn flat_color(&self, scene: &Scene, face: &crate::scene::Face, eye: DVec3) -> [f64; 3] {
         let m = &scene.materials[face.material as usize];
-        let n = scene.face_normal(face);
-        let k = face.len as f64;
-        let centroid = scene.face_positions(face).sum::<DVec3>() / k;
-        let (lit, spec) = self.terms(n, centroid, eye, self.specular > 0.0);
+        let (lit, spec) = self.flat_terms(scene.face_positions(face), scene.face_normal(face), eye);
         combine(m.diffuse, m.emissive, lit, spec)
+    }
+
+    /// The light terms of flat shading, shared by every flat fill: the model at the centroid of
+    /// the face's corners with its normal, the highlight only when Ks > 0.
+    fn flat_terms(
+        &self,
+        corners: impl Iterator<Item = DVec3>,
+        normal: DVec3,
+        eye: DVec3,
+    ) -> ([f64; 3], [f64; 3]) {
+        let (sum, k) = corners.fold((DVec3::ZERO, 0usize), |(s, k), p| (s + p, k + 1));
+        self.terms(normal, sum / k as f64, eye, self.specular > 0.0)
     }
 
     /// The light at `point` with normal `normal` seen from `eye`: the factor that multiplies
@@ -372,14 +381,14 @@ pub fn shade_polys(
                 // Seen edge-on: no interior point to shade; the flat colour is the honest one.
                 let (lit, spec) = *flat
                     .entry(fi)
-                    .or_insert_with(|| flat_terms(lighting, &pts, n, eye));
+                    .or_insert_with(|| lighting.flat_terms(pts.iter().copied(), n, eye));
                 return combine(m.diffuse, m.emissive, lit, spec);
             };
             let base = textured_base(scene, f, m.diffuse, textures, &pts, n, &hit, &rays, i, j);
             let (lit, spec) = match shading {
                 Shading::Flat => *flat
                     .entry(fi)
-                    .or_insert_with(|| flat_terms(lighting, &pts, n, eye)),
+                    .or_insert_with(|| lighting.flat_terms(pts.iter().copied(), n, eye)),
                 Shading::Gouraud => {
                     let c = hit.corners;
                     let t = c.map(|k| {
@@ -403,12 +412,6 @@ pub fn shade_polys(
             combine(base, m.emissive, lit, spec)
         })
         .collect()
-}
-
-fn flat_terms(lighting: &Lighting, pts: &[DVec3], n: DVec3, eye: DVec3) -> ([f64; 3], [f64; 3]) {
-    // As `Lighting::flat_color`: the specular term only when Ks > 0.
-    let centroid = pts.iter().copied().sum::<DVec3>() / pts.len() as f64;
-    lighting.terms(n, centroid, eye, lighting.specular > 0.0)
 }
 
 /// The material's diffuse colour times the texture at the hit, if there is one.
