@@ -3,7 +3,7 @@
 
 use crate::camera::Camera;
 use crate::project::{CullMode, ScreenScene, project};
-use crate::raster::shade::{flat_color, id_color, to_u8};
+use crate::raster::shade::{face_paint, to_u8};
 use crate::raster::{EMPTY, ZBuffer, zbuffer};
 use crate::scene::Scene;
 use crate::scene::analysis::{SceneAnalysis, analyse};
@@ -68,10 +68,7 @@ pub fn colorize_polys(
     let colors: Vec<[u8; 3]> = screen
         .polys
         .iter()
-        .map(|p| match fill {
-            Fill::Id => id_color(p.id),
-            Fill::Shade => to_u8(flat_color(scene, p.face as usize, camera)),
-        })
+        .map(|p| to_u8(face_paint(scene, p.face as usize, camera, fill).0))
         .collect();
     let background = match fill {
         Fill::Id => [0, 0, 0],
