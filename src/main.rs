@@ -552,7 +552,11 @@ fn run_method(
 ) -> sightline::visibility::VisibilityResult {
     use sightline::visibility::VisibilityMethod;
     if method == Method::Bsp {
-        let m = sightline::visibility::BspMethod { merge_surfaces };
+        // Seams are for vector drawings, which the pictures (merged surfaces) are.
+        let m = sightline::visibility::BspMethod {
+            merge_surfaces,
+            seams: merge_surfaces,
+        };
         return m.run(scene, &prepared.screen, camera, fill);
     }
     let m = sightline::visibility::method_by_name(method.name())

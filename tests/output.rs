@@ -47,6 +47,7 @@ fn holed_drawing() -> Drawing {
                 0.5,
             ),
         ],
+        seams: Default::default(),
     }
 }
 
@@ -80,6 +81,7 @@ fn svg_keeps_every_digit_of_every_coordinate() {
             [0.5; 3],
             1.0,
         )],
+        seams: Default::default(),
     };
     let svg = write_svg(&d, &SvgOptions::default());
     assert!(svg.contains("0.30000000000000004"), "{svg}");
@@ -596,6 +598,7 @@ fn coplanar_faces_of_one_paint_are_drawn_as_one_region() {
     let screen = prepare(&scene, &cam, CullMode::Off).screen;
     let merged = BspMethod {
         merge_surfaces: true,
+        seams: false,
     }
     .run(&scene, &screen, &cam, Fill::Shade);
     let apart = BspMethod::default().run(&scene, &screen, &cam, Fill::Shade);

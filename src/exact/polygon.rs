@@ -447,6 +447,22 @@ impl Piece {
         ]
     }
 
+    /// Is vertex k the same point as `other`'s vertex v? Exact: the cached points settle most
+    /// pairs that are apart, then the point must lie on both lines of vertex k.
+    pub fn same_vertex(&self, k: usize, other: &Piece, v: usize) -> bool {
+        let ([x, y, e], [u, w, f]) = (self.points[k], other.points[v]);
+        // Each exact coordinate is within e (f) of its f64 one; the slack covers the rounding
+        // of the differences. Infinite bounds never reject.
+        let apart =
+            |a: f64, b: f64| (a - b).abs() > 2.0 * (e + f) + (a.abs() + b.abs()) * f64::EPSILON;
+        if apart(x, u) || apart(y, w) {
+            return false;
+        }
+        self.vertex_lines(k)
+            .iter()
+            .all(|l| other.vertex_line_sign(v, l) == Ordering::Equal)
+    }
+
     /// Vertex k in f64 grid coordinates (rounded: for output and bounds, never decisions).
     pub fn vertex_f64(&self, k: usize) -> [f64; 2] {
         let [x, y, _] = self.points[k];

@@ -3,7 +3,8 @@
 //! Coordinates are pixels with y growing downward (NDC [-1,1]² maps to [0,W] x [0,H]), rounded
 //! once from the exact result: the output-rounding approximation of the exactness contract.
 //! Items are in painter order: an item is drawn over every item before it. Rings of one item are
-//! filled with the even-odd rule (outer boundaries and holes alike).
+//! filled with the even-odd rule (outer boundaries and holes alike). Seams are painted under every
+//! item: they only show where anti-aliased fills leave a boundary pixel partly uncovered.
 
 use crate::scene::FaceId;
 
@@ -34,4 +35,35 @@ pub struct Drawing {
     pub background: Option<[f64; 3]>,
     /// Back to front.
     pub items: Vec<DrawItem>,
+    /// Boundaries that opaque items share, painted under all items (empty unless asked for).
+    pub seams: Seams,
+}
+
+/// What fills the seams of a drawing: the boundary segments shared by two opaque items, stroked
+/// in the colour of one of them under every fill, and clipped to the outline of the opaque
+/// items. Where two fills' anti-aliased edges each cover part of a pixel, the strokes fill
+/// what they leave, so no background shows through ("conflation"); the fills themselves keep
+/// the exact boundaries. The clip keeps the strokes off the silhouette and off translucent
+/// items (a stroke along a sliver face at the silhouette would otherwise widen it).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Seams {
+    /// Rings of the union of the opaque items (even-odd), pixels, y down: the strokes' clip.
+    pub outline: Vec<Vec<[f64; 2]>>,
+    /// The shared segments, by colour.
+    pub strokes: Vec<SeamStroke>,
+}
+
+impl Seams {
+    pub fn is_empty(&self) -> bool {
+        self.strokes.is_empty()
+    }
+}
+
+/// Shared boundary segments stroked in one colour.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SeamStroke {
+    /// Stroke colour, linear RGB in [0,1]: the colour of one of the two items.
+    pub color: [f64; 3],
+    /// Segments, pixels, y down.
+    pub segments: Vec<[[f64; 2]; 2]>,
 }

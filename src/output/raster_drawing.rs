@@ -186,6 +186,7 @@ mod tests {
                 [1.0; 3],
                 1.0,
             )],
+            seams: Default::default(),
         };
         let ids = face_ids(&d);
         let covered: Vec<(usize, usize)> = (0..25)
@@ -206,6 +207,7 @@ mod tests {
             height: 8,
             background: None,
             items: vec![mk(a, [1.0, 0.0, 0.0]), mk(b, [0.0, 1.0, 0.0])],
+            seams: Default::default(),
         };
         // Half opacity each over black: a pixel covered twice would show both colours.
         for c in colors(&d) {
@@ -259,6 +261,7 @@ mod tests {
             height: h,
             background: Some([0.5, 0.25, 1.0]),
             items,
+            seams: Default::default(),
         };
         let ids = face_ids(&d);
         let cols = colors(&d);
@@ -299,6 +302,7 @@ mod tests {
                 [1.0; 3],
                 1.0,
             )],
+            seams: Default::default(),
         };
         assert!(face_ids(&d).iter().all(|&f| f == Some(1)));
         assert!(colors(&d).iter().all(|&c| c == [1.0; 3]));

@@ -25,15 +25,17 @@
 
 use super::coverage::{Coverage, CoverageStats, bounds, tie_key};
 use super::regions::{regions, surfaces};
+use super::seams::shared_edges;
 use crate::camera::Camera;
 use crate::exact::polygon::{Piece, Split, convex_pieces, separated};
 use crate::exact::predicates::{Line, line_side};
 use crate::exact::{GridPoint, Plane, Samples};
-use crate::output::drawing::{DrawItem, Drawing};
+use crate::output::drawing::{DrawItem, Drawing, SeamStroke, Seams};
 use crate::pipeline::Fill;
 use crate::project::ScreenScene;
 use crate::scene::Scene;
 use std::cmp::Ordering;
+use std::collections::BTreeMap;
 use std::time::Instant;
 
 /// Counters of one BSP run.
@@ -219,7 +221,11 @@ fn partition(splitter: &Splitter, list: Vec<Piece>) -> (Vec<Piece>, Vec<Piece>, 
 impl Bsp {
     /// Builds the 3D BSP of a screen scene.
     pub fn build(screen: &ScreenScene) -> Bsp {
-        let pieces = initial_pieces(screen);
+        Bsp::build_from(screen, initial_pieces(screen))
+    }
+
+    /// Builds the 3D BSP of some of a screen scene's pieces.
+    pub fn build_from(screen: &ScreenScene, pieces: Vec<Piece>) -> Bsp {
         let mut stats = BspStats {
             polygons: screen.polys.len(),
             pieces: pieces.len(),
@@ -348,7 +354,18 @@ impl Bsp {
 /// is built, so interpenetrating soups cost what their visible arrangement needs. The nearest
 /// first order only saves work (most pieces then meet only nearer ones); it decides nothing.
 pub fn visible_set(screen: &ScreenScene) -> (VisibleSet, CoverageStats) {
-    let mut pieces = initial_pieces(screen);
+    let coverage = coverage_of(screen, initial_pieces(screen));
+    let stats = coverage.stats.clone();
+    (
+        VisibleSet {
+            pieces: coverage.into_pieces(),
+        },
+        stats,
+    )
+}
+
+/// The coverage map of `pieces`, inserted nearest corner first (see [`visible_set`]).
+fn coverage_of(screen: &ScreenScene, mut pieces: Vec<Piece>) -> Coverage<'_> {
     let near: Vec<i32> = screen
         .polys
         .iter()
@@ -359,13 +376,41 @@ pub fn visible_set(screen: &ScreenScene) -> (VisibleSet, CoverageStats) {
     for p in pieces {
         coverage.insert(p);
     }
-    let stats = coverage.stats.clone();
-    (
-        VisibleSet {
+    coverage
+}
+
+/// A scene with translucent faces, in two layers: what is drawn first, and what blends over it.
+#[derive(Clone, Debug, Default)]
+pub struct Layers {
+    /// The exact visible set of the opaque faces alone.
+    pub opaque: VisibleSet,
+    /// The parts of the translucent faces' fragments that no opaque face hides, back to front
+    /// in the exact order of a 3D BSP of the translucent faces: each blends over everything
+    /// drawn before it, and over nothing that should hide it.
+    pub translucent: Vec<Piece>,
+    pub coverage: CoverageStats,
+    pub bsp: BspStats,
+}
+
+/// The [`Layers`] of `screen`, where `translucent(poly)` says which screen polygons blend.
+pub fn layers(screen: &ScreenScene, translucent: impl Fn(u32) -> bool) -> Layers {
+    let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
+        .into_iter()
+        .partition(|p| translucent(p.poly));
+    let mut coverage = coverage_of(screen, opaque);
+    let bsp = Bsp::build_from(screen, see_through);
+    let mut fragments = Vec::new();
+    for f in bsp.back_to_front() {
+        coverage.unhidden_parts(f, &mut fragments);
+    }
+    Layers {
+        coverage: coverage.stats.clone(),
+        opaque: VisibleSet {
             pieces: coverage.into_pieces(),
         },
-        stats,
-    )
+        translucent: fragments,
+        bsp: bsp.stats,
+    }
 }
 
 impl VisibleSet {
@@ -439,8 +484,10 @@ impl VisibleSet {
 }
 
 /// The BSP strategy behind the common trait. Opaque scenes draw the exact visible set; a scene
-/// with translucent faces (under `Fill::Shade`) draws every fragment back to front, in the BSP's
-/// exact order, so each translucent fragment blends over what lies behind it.
+/// with translucent faces (under `Fill::Shade`) draws its [`layers`]: the opaque faces' exact
+/// visible set, then the translucent fragments in front of it, back to front in the BSP's exact
+/// order, so each blends over exactly what lies behind it. Consecutive fragments of one face
+/// are one item, so a viewer never blends their common edges twice.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct BspMethod {
     /// Draw abutting visible regions of coplanar faces with the same colour and material as one
@@ -448,6 +495,9 @@ pub struct BspMethod {
     /// inside a surface (a CAD face triangulated in the file). Off: one region set per face, as
     /// per-face output (JSON) needs.
     pub merge_surfaces: bool,
+    /// Also find the boundaries that two opaque regions share ([`Seams`]), painted
+    /// under the fills of vector output so that anti-aliasing shows no seams between regions.
+    pub seams: bool,
 }
 
 impl super::VisibilityMethod for BspMethod {
@@ -467,10 +517,14 @@ impl super::VisibilityMethod for BspMethod {
         fill: Fill,
     ) -> super::VisibilityResult {
         let fallbacks = crate::exact::predicates::fallback_count();
-        let translucent = fill == Fill::Shade
-            && screen.polys.iter().any(|p| {
-                scene.materials[scene.faces[p.face as usize].material as usize].transparency > 0.0
-            });
+        // Colour and opacity of every screen polygon, once.
+        let paints: Vec<([f64; 3], f64)> = screen
+            .polys
+            .iter()
+            .map(|poly| super::face_paint(scene, poly.face as usize, camera, fill))
+            .collect();
+        let blends = |poly: u32| paints[poly as usize].1 < 1.0;
+        let translucent = (0..screen.polys.len() as u32).any(blends);
         let mut stats = serde_json::Map::new();
         let mut put = |k: &str, v: serde_json::Value| {
             stats.insert(k.to_string(), v);
@@ -478,81 +532,87 @@ impl super::VisibilityMethod for BspMethod {
         put("polygons", screen.polys.len().into());
         put("translucent_painter_order", translucent.into());
         let t = Instant::now();
-        let pieces = if translucent {
-            // Blending needs every fragment in exact depth order: the BSP gives it.
-            let bsp = Bsp::build(screen);
-            let st = &bsp.stats;
-            put("pieces", st.pieces.into());
-            put("fragments", st.fragments.into());
-            put("bsp_nodes", st.nodes.into());
-            put("bsp_depth", st.depth.into());
-            bsp.back_to_front()
+        let (opaque, see_through) = if translucent {
+            let l = layers(screen, blends);
+            put("pieces", (l.coverage.inserted + l.bsp.pieces).into());
+            put("visible_pieces", l.opaque.pieces.len().into());
+            put("fragments", l.bsp.fragments.into());
+            put("bsp_nodes", l.bsp.nodes.into());
+            put("bsp_depth", l.bsp.depth.into());
+            put("translucent_parts", l.translucent.len().into());
+            (l.opaque.pieces, l.translucent)
         } else {
             let (visible, cs) = visible_set(screen);
             put("pieces", cs.inserted.into());
             put("visible_pieces", visible.pieces.len().into());
             put("replaced", cs.replaced.into());
             put("overlap_tests", cs.overlap_tests.into());
-            visible.pieces
+            (visible.pieces, Vec::new())
         };
-        // Fragments of the painter order, or visible pieces: what is drawn, per polygon.
+        // Visible opaque pieces and translucent parts: what is drawn, per polygon.
         put(
             "drawn_pieces_per_polygon",
-            (pieces.len() as f64 / screen.polys.len().max(1) as f64).into(),
+            ((opaque.len() + see_through.len()) as f64 / screen.polys.len().max(1) as f64).into(),
         );
         put("visibility_seconds", t.elapsed().as_secs_f64().into());
         put(
             "exact_fallbacks",
             (crate::exact::predicates::fallback_count() - fallbacks).into(),
         );
-        let s = Samples::new(screen.width, screen.height);
-        let ring = |p: &Piece| -> Vec<[f64; 2]> {
-            p.vertices_f64()
-                .into_iter()
-                .map(|[x, y]| [s.col_of(x), s.row_of(y)])
-                .collect()
+        // The regions of a group are drawn as one item: one face, or (merging) one surface of
+        // coplanar faces of one paint. One paint is what the output shows: the 8-bit colour,
+        // material and opacity.
+        let group: Vec<u32> = if self.merge_surfaces {
+            surfaces(scene, screen, camera.eye, |i| {
+                let (color, opacity) = paints[i];
+                (
+                    crate::raster::shade::to_u8(color),
+                    scene.faces[screen.polys[i].face as usize].material,
+                    opacity.to_bits(),
+                )
+            })
+        } else {
+            screen.polys.iter().map(|p| p.id).collect()
         };
-        let item = |p: &Piece, rings: Vec<Vec<[f64; 2]>>| {
-            let poly = &screen.polys[p.poly as usize];
-            let (color, opacity) = super::face_paint(scene, poly.face as usize, camera, fill);
+        let item = |poly: u32, faces: &[u32], rings: Vec<Vec<[f64; 2]>>| {
+            let (color, opacity) = paints[poly as usize];
             DrawItem {
-                face: poly.id,
-                merged: Vec::new(),
-                material: scene.faces[poly.face as usize].material,
+                face: faces[0],
+                merged: faces[1..].to_vec(),
+                material: scene.faces[screen.polys[poly as usize].face as usize].material,
                 rings,
                 color,
                 opacity,
             }
         };
-        let items: Vec<DrawItem> = if translucent {
-            // Painter order matters: one item per fragment.
-            pieces.iter().map(|p| item(p, vec![ring(p)])).collect()
-        } else if self.merge_surfaces {
-            // Coplanar faces of one colour and material read as one surface: one region.
-            // One paint is what the output shows: the 8-bit colour, material and opacity.
-            let surface = surfaces(scene, screen, camera.eye, |poly| {
-                let (color, opacity) = super::face_paint(scene, poly.face as usize, camera, fill);
-                (
-                    crate::raster::shade::to_u8(color),
-                    scene.faces[poly.face as usize].material,
-                    opacity.to_bits(),
-                )
-            });
-            regions(&pieces, screen, |p| surface[p.poly as usize])
+        let group_of = |p: &Piece| group[p.poly as usize];
+        let mut items: Vec<DrawItem> = regions(&opaque, screen, group_of)
+            .into_iter()
+            .map(|r| item(opaque[r.piece].poly, &r.faces, r.rings))
+            .collect();
+        for run in see_through.chunk_by(|a, b| a.poly == b.poly) {
+            let rings = regions(run, screen, |_| ())
                 .into_iter()
-                .map(|r| {
-                    let mut it = item(&pieces[r.piece], r.rings);
-                    it.face = r.faces[0];
-                    it.merged = r.faces[1..].to_vec();
-                    it
-                })
-                .collect()
+                .flat_map(|r| r.rings)
+                .collect();
+            items.push(item(
+                run[0].poly,
+                &[screen.polys[run[0].poly as usize].id],
+                rings,
+            ));
+        }
+        let seams = if self.seams {
+            let samples = Samples::new(screen.width, screen.height);
+            let color = |p: &Piece| paints[p.poly as usize].0;
+            Seams {
+                strokes: seam_strokes(&opaque, &group_of, &color, &samples),
+                outline: regions(&opaque, screen, |_| ())
+                    .into_iter()
+                    .flat_map(|r| r.rings)
+                    .collect(),
+            }
         } else {
-            // Disjoint pieces: merge each face's into regions with holes.
-            regions(&pieces, screen, |p| screen.polys[p.poly as usize].id)
-                .into_iter()
-                .map(|r| item(&pieces[r.piece], r.rings))
-                .collect()
+            Seams::default()
         };
         super::VisibilityResult {
             drawing: Drawing {
@@ -560,8 +620,38 @@ impl super::VisibilityMethod for BspMethod {
                 height: screen.height,
                 background: super::background(fill),
                 items,
+                seams,
             },
             stats,
         }
     }
+}
+
+/// The boundaries that opaque pieces of different groups share, stroked in the darker of the
+/// two colours (8-bit, then the smaller), one [`SeamStroke`] per colour in colour order.
+fn seam_strokes(
+    pieces: &[Piece],
+    group: &dyn Fn(&Piece) -> u32,
+    color: &dyn Fn(&Piece) -> [f64; 3],
+    samples: &Samples,
+) -> Vec<SeamStroke> {
+    use crate::raster::shade::to_u8;
+    let mut by_color: BTreeMap<[u8; 3], SeamStroke> = BTreeMap::new();
+    for e in shared_edges(pieces, |i| group(&pieces[i]), samples) {
+        let [ca, cb] = e.pieces.map(|i| color(&pieces[i]));
+        let key = |c: [f64; 3]| {
+            let u = to_u8(c);
+            (u.iter().map(|&v| v as u32).sum::<u32>(), u)
+        };
+        let c = if key(cb) < key(ca) { cb } else { ca };
+        by_color
+            .entry(to_u8(c))
+            .or_insert_with(|| SeamStroke {
+                color: c,
+                segments: Vec::new(),
+            })
+            .segments
+            .push(e.ends);
+    }
+    by_color.into_values().collect()
 }

@@ -137,6 +137,43 @@ impl<'a> Coverage<'a> {
         }
     }
 
+    /// Pushes the parts of `piece` that no live piece hides (nearer, or coplanar and first by
+    /// the tie rule), leaving the map as it is: a translucent fragment over an opaque visible
+    /// set.
+    pub fn unhidden_parts(&mut self, piece: Piece, out: &mut Vec<Piece>) {
+        let near = self.near(&bounds(&piece));
+        let mut parts = vec![piece];
+        for v in near {
+            let front = self.visible[v as usize].as_ref().expect("live");
+            let mut next = Vec::with_capacity(parts.len());
+            for part in parts {
+                self.stats.overlap_tests += 1;
+                if separated(&part, front) {
+                    next.push(part);
+                    continue;
+                }
+                // The viewer is on the negative side of `front`'s support plane.
+                match part.split_by_plane(&front.support) {
+                    Split::Negative => next.push(part),
+                    Split::Positive => subtract(part, front, &mut next),
+                    Split::On if tie_key(self.screen, &part) < tie_key(self.screen, front) => {
+                        next.push(part)
+                    }
+                    Split::On => subtract(part, front, &mut next),
+                    Split::Both(nearer, farther) => {
+                        next.push(nearer);
+                        subtract(farther, front, &mut next);
+                    }
+                }
+            }
+            parts = next;
+            if parts.is_empty() {
+                return;
+            }
+        }
+        out.append(&mut parts);
+    }
+
     /// Inserts a piece in any order: see the module docs.
     pub fn insert(&mut self, piece: Piece) {
         self.stats.inserted += 1;

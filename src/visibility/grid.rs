@@ -73,3 +73,37 @@ impl BoxGrid {
         }
     }
 }
+
+/// For every box `a`, in order, calls `f(a, near)` with the other boxes whose closed extents meet
+/// box `a`'s, ascending: the candidate neighbours of `a` (a filter: the caller decides exactly).
+pub(crate) fn for_each_near(boxes: &[[f64; 4]], mut f: impl FnMut(usize, &[usize])) {
+    let mut grid = BoxGrid::over(boxes, boxes.len());
+    for (i, b) in boxes.iter().enumerate() {
+        grid.insert(i as u32, b);
+    }
+    let mut near: Vec<usize> = Vec::new();
+    let mut seen = vec![usize::MAX; boxes.len()];
+    for (a, ba) in boxes.iter().enumerate() {
+        near.clear();
+        grid.visit(
+            ba,
+            |_| true,
+            |b| {
+                let b = b as usize;
+                let bb = &boxes[b];
+                if b != a
+                    && seen[b] != a
+                    && ba[0] <= bb[2]
+                    && bb[0] <= ba[2]
+                    && ba[1] <= bb[3]
+                    && bb[1] <= ba[3]
+                {
+                    seen[b] = a;
+                    near.push(b);
+                }
+            },
+        );
+        near.sort_unstable();
+        f(a, &near);
+    }
+}

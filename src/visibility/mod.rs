@@ -18,6 +18,7 @@ pub mod coverage;
 mod grid;
 pub mod painter;
 pub mod regions;
+pub mod seams;
 
 pub use bsp::BspMethod;
 pub use painter::Painter;

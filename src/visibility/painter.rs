@@ -71,6 +71,7 @@ impl VisibilityMethod for Painter {
                 height: screen.height,
                 background: background(fill),
                 items,
+                seams: Default::default(),
             },
             stats,
         }

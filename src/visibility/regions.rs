@@ -6,10 +6,10 @@
 //! millionth of a pixel), and each region lists the input faces whose pieces lie in it.
 
 use super::coverage::bounds;
-use super::grid::BoxGrid;
+use super::grid::for_each_near;
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
-use crate::project::{ScreenPoly, ScreenScene};
+use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
 use glam::DVec3;
 use std::cmp::Ordering;
@@ -39,13 +39,16 @@ pub fn regions<K: Ord>(
         groups.entry(key(p)).or_default().push(i);
     }
     let face_of = |i: usize| screen.polys[pieces[i].poly as usize].id;
+    let vertices = shared_vertex_pixels(pieces, &s);
     let mut out = Vec::new();
     for members in groups.into_values() {
         let group: Vec<&Piece> = members.iter().map(|&i| &pieces[i]).collect();
+        let group_vertices: Vec<&[[f64; 2]]> =
+            members.iter().map(|&i| vertices[i].as_slice()).collect();
         let mut faces: Vec<FaceId> = members.iter().map(|&i| face_of(i)).collect();
         faces.sort_unstable();
         faces.dedup();
-        let merged = merge_rings(conforming_rings(&group, &s));
+        let merged = merge_rings(conforming_rings(&group, &group_vertices));
         if faces.len() == 1 || merged.len() == 1 {
             out.extend(merged.into_iter().map(|rings| Region {
                 faces: faces.clone(),
@@ -80,7 +83,7 @@ pub fn regions<K: Ord>(
     out
 }
 
-/// A surface label per screen polygon: polygons with equal `paint` whose faces' world planes
+/// A surface label per screen polygon: polygons with equal `paint(index)` whose faces' world planes
 /// fall in the same bucket share a label (numbered in polygon order). The bucket is the plane's
 /// unit normal, turned towards the eye, and its offset, each rounded to 2^-20 (the offset of
 /// the scene's size): coplanar faces share it, and near-coplanar ones almost always do, except
@@ -93,7 +96,7 @@ pub fn surfaces<P: Ord>(
     scene: &Scene,
     screen: &ScreenScene,
     eye: DVec3,
-    paint: impl Fn(&ScreenPoly) -> P,
+    paint: impl Fn(usize) -> P,
 ) -> Vec<u32> {
     let size = scene
         .bounds()
@@ -104,7 +107,7 @@ pub fn surfaces<P: Ord>(
     let mut buckets: BTreeMap<(P, [i64; 4]), u32> = BTreeMap::new();
     let mut labels = Vec::with_capacity(screen.polys.len());
     let mut next = 0u32;
-    for poly in &screen.polys {
+    for (index, poly) in screen.polys.iter().enumerate() {
         let face = &scene.faces[poly.face as usize];
         let corners = scene.face_corners(face);
         let p0 = scene.positions[corners[0] as usize];
@@ -114,7 +117,7 @@ pub fn surfaces<P: Ord>(
             n = -n;
         }
         let d = n.dot(p0) / size;
-        let key = (paint(poly), [q(n.x), q(n.y), q(n.z), q(d)]);
+        let key = (paint(index), [q(n.x), q(n.y), q(n.z), q(d)]);
         let label = *buckets.entry(key).or_insert_with(|| {
             next += 1;
             next - 1
@@ -173,78 +176,78 @@ fn ring_set_contains(rings: &[Vec<[f64; 2]>], [px, py]: [f64; 2]) -> bool {
     inside
 }
 
-/// The pixel rings of one group's pieces, made conforming: where a vertex of one piece lies on an
-/// edge of another (a T-junction, decided exactly), it is inserted into that edge with the very
-/// same f64 coordinates, so shared boundaries are identical segments and the union below closes
-/// them without slivers.
-fn conforming_rings(pieces: &[&Piece], s: &Samples) -> Vec<Vec<[f64; 2]>> {
+/// Every piece's vertices in pixels, rounded once, with the same bits wherever pieces share an
+/// exact vertex (decided exactly): the first piece having it gives its rounding to the others.
+/// Two pieces' roundings of one point may otherwise differ in the last bits (each rounds its own
+/// implicit vertex), and a union then leaves a crack between them.
+fn shared_vertex_pixels(pieces: &[Piece], s: &Samples) -> Vec<Vec<[f64; 2]>> {
     let px = |[x, y]: [f64; 2]| [s.col_of(x), s.row_of(y)];
+    let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
+    let mut out: Vec<Vec<[f64; 2]>> = Vec::with_capacity(pieces.len());
+    for_each_near(&boxes, |a, near| {
+        let pa = &pieces[a];
+        let own = (0..pa.len())
+            .map(|k| {
+                // Earlier pieces already hold the first rounding of every vertex they share.
+                near.iter()
+                    .take_while(|&&b| b < a)
+                    .find_map(|&b| {
+                        (0..pieces[b].len())
+                            .find(|&v| pa.same_vertex(k, &pieces[b], v))
+                            .map(|v| out[b][v])
+                    })
+                    .unwrap_or_else(|| px(pa.vertex_f64(k)))
+            })
+            .collect();
+        out.push(own);
+    });
+    out
+}
+
+/// The pixel rings of one group's pieces (`vertices`: their [`shared_vertex_pixels`]), made
+/// conforming: where a vertex of one piece lies on an edge of another (a T-junction, decided
+/// exactly), it is inserted into that edge with the very same f64 coordinates, so shared
+/// boundaries are identical segments and the union below closes them without slivers.
+fn conforming_rings(pieces: &[&Piece], vertices: &[&[[f64; 2]]]) -> Vec<Vec<[f64; 2]>> {
     let boxes: Vec<[f64; 4]> = pieces.iter().map(|p| bounds(p)).collect();
-    let mut grid = BoxGrid::over(&boxes, boxes.len());
-    for (i, b) in boxes.iter().enumerate() {
-        grid.insert(i as u32, b);
-    }
-    let mut near: Vec<usize> = Vec::new();
-    let mut seen = vec![usize::MAX; pieces.len()];
-    pieces
-        .iter()
-        .enumerate()
-        .map(|(a, pa)| {
-            // The pieces whose bounds meet this one's: only they can have a vertex on its edges.
-            near.clear();
-            grid.visit(
-                &boxes[a],
-                |_| true,
-                |b| {
-                    let b = b as usize;
-                    let (ba, bb) = (&boxes[a], &boxes[b]);
-                    if b != a
-                        && seen[b] != a
-                        && ba[0] <= bb[2]
-                        && bb[0] <= ba[2]
-                        && ba[1] <= bb[3]
-                        && bb[1] <= ba[3]
-                    {
-                        seen[b] = a;
-                        near.push(b);
+    let mut rings = Vec::with_capacity(pieces.len());
+    // The pieces whose bounds meet a piece's are the only ones with a vertex on its edges.
+    for_each_near(&boxes, |a, near| {
+        let pa = pieces[a];
+        let n = pa.len();
+        let mut ring = Vec::with_capacity(n);
+        for k in 0..n {
+            let start = vertices[a][k];
+            ring.push(start);
+            // Vertices of other pieces strictly inside edge k (line k, between vertices k
+            // and k+1): on line k, strictly inside every other line.
+            let (edge, edge_approx) = (&pa.lines[k], &pa.line_approx[k]);
+            let mut on_edge: Vec<(f64, [f64; 2])> = Vec::new();
+            for &b in near {
+                let pb = pieces[b];
+                for (v, &q) in vertices[b].iter().enumerate() {
+                    if pb.vertex_line_sign_with(v, edge, edge_approx) != Ordering::Equal {
+                        continue;
                     }
-                },
-            );
-            near.sort_unstable();
-            let n = pa.len();
-            let mut ring = Vec::with_capacity(n);
-            for k in 0..n {
-                let start = pa.vertex_f64(k);
-                ring.push(px(start));
-                // Vertices of other pieces strictly inside edge k (line k, between vertices k
-                // and k+1): on line k, strictly inside every other line.
-                let (edge, edge_approx) = (&pa.lines[k], &pa.line_approx[k]);
-                let mut on_edge: Vec<(f64, [f64; 2])> = Vec::new();
-                for &b in &near {
-                    let pb = pieces[b];
-                    for v in 0..pb.len() {
-                        if pb.vertex_line_sign_with(v, edge, edge_approx) != Ordering::Equal {
-                            continue;
-                        }
-                        let inside = (pa.lines.iter().zip(&pa.line_approx)).enumerate().all(
-                            |(j, (l, la))| {
+                    let inside =
+                        (pa.lines.iter().zip(&pa.line_approx))
+                            .enumerate()
+                            .all(|(j, (l, la))| {
                                 j == k || pb.vertex_line_sign_with(v, l, la) == Ordering::Greater
-                            },
-                        );
-                        if inside {
-                            let q = pb.vertex_f64(v);
-                            let t = (q[0] - start[0]).abs() + (q[1] - start[1]).abs();
-                            on_edge.push((t, q));
-                        }
+                            });
+                    if inside {
+                        let t = (q[0] - start[0]).abs() + (q[1] - start[1]).abs();
+                        on_edge.push((t, q));
                     }
                 }
-                on_edge.sort_by(|x, y| x.0.total_cmp(&y.0));
-                on_edge.dedup_by(|x, y| x.1 == y.1);
-                ring.extend(on_edge.into_iter().map(|(_, q)| px(q)));
             }
-            ring
-        })
-        .collect()
+            on_edge.sort_by(|x, y| x.0.total_cmp(&y.0));
+            on_edge.dedup_by(|x, y| x.1 == y.1);
+            ring.extend(on_edge.into_iter().map(|(_, q)| q));
+        }
+        rings.push(ring);
+    });
+    rings
 }
 
 /// The union of one group's disjoint convex rings (pixel coordinates) as regions, each an outer
