@@ -34,7 +34,6 @@ use crate::pipeline::Fill;
 use crate::project::ScreenScene;
 use crate::scene::Scene;
 use std::cmp::Ordering;
-use std::time::Instant;
 
 /// Counters of one BSP run.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -477,7 +476,6 @@ impl super::VisibilityMethod for BspMethod {
         };
         put("polygons", screen.polys.len().into());
         put("translucent_painter_order", translucent.into());
-        let t = Instant::now();
         let pieces = if translucent {
             // Blending needs every fragment in exact depth order: the BSP gives it.
             let bsp = Bsp::build(screen);
@@ -500,7 +498,6 @@ impl super::VisibilityMethod for BspMethod {
             "drawn_pieces_per_polygon",
             (pieces.len() as f64 / screen.polys.len().max(1) as f64).into(),
         );
-        put("visibility_seconds", t.elapsed().as_secs_f64().into());
         put(
             "exact_fallbacks",
             (crate::exact::predicates::fallback_count() - fallbacks).into(),
