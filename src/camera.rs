@@ -311,7 +311,7 @@ impl CameraSpec {
         let ortho = self.ortho_height.is_some();
         let explicit_pose = self.eye.is_some() || self.target.is_some();
         let mut cam = if let Some(file) = &self.cam_file {
-            let mut c = file.camera(ortho);
+            let mut c = file.camera();
             c.width = w;
             c.height = h;
             c
@@ -341,6 +341,16 @@ impl CameraSpec {
             || self.near.is_none() && self.far.is_none() && self.cam_file.is_none();
         if refit && cam.target != cam.eye {
             cam.fit_depth_range(bounds);
+            let (center, radius) = bounding_sphere(bounds);
+            if self.near.is_none() && self.far.is_none() && cam.far <= cam.near {
+                // The scene's depth vanishes when rounded at the eye's distance: near and far,
+                // which the user did not give, round to one value.
+                return Err(Error::Camera(format!(
+                    "the eye is too far from the scene to resolve its depth (distance {:.3e}, scene radius {:.3e}): move the eye closer",
+                    (center - cam.eye).length(),
+                    radius
+                )));
+            }
         }
         if let Some(n) = self.near {
             cam.near = n;
@@ -360,13 +370,20 @@ pub fn bounding_sphere((lo, hi): (DVec3, DVec3)) -> (DVec3, f64) {
     (center, radius)
 }
 
-/// A camera file as in `../shared/meshes/cams/*.cam`: lines `eye x y z`, `target x y z`,
-/// `up x y z`, `fovy DEG`, `ortho_height H`, `near N`, `far F`, `size W H`.
+/// A camera file as in `../shared/meshes/cams/*.cam` (written by `../shared/compare/scenes.py`):
+/// lines `eye x y z`, `target x y z`, `up x y z`, `fovy DEG`, `ortho_height H`, `near N`,
+/// `far F`, `size W H`; `#` starts a comment line. `fovy 0` means orthographic with view height
+/// `ortho_height`; otherwise the camera is a perspective one and `ortho_height` is unused.
+/// A leading UTF-8 byte-order mark and CRLF line ends are accepted.
+///
+/// A parsed file is a valid camera: every error names the file and, where one line is to blame,
+/// that line.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CamFile {
     pub eye: DVec3,
     pub target: DVec3,
     pub up: DVec3,
+    /// Vertical field of view in degrees; 0 for orthographic.
     pub fovy_deg: f64,
     pub ortho_height: Option<f64>,
     pub near: f64,
@@ -377,14 +394,9 @@ pub struct CamFile {
 impl CamFile {
     pub fn parse(text: &str, name: &str) -> Result<CamFile, crate::LoadError> {
         use crate::LoadError;
-        let mut eye = None;
-        let mut target = None;
-        let mut up = None;
-        let mut fovy = None;
-        let mut ortho = None;
-        let mut near = None;
-        let mut far = None;
-        let mut size = None;
+        // Each key's values and the line they came from.
+        let mut seen: std::collections::HashMap<&str, (Vec<f64>, usize)> = Default::default();
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         for (n, line) in text.lines().enumerate() {
             let ln = n + 1;
             let mut it = line.split_whitespace();
@@ -400,87 +412,116 @@ impl CamFile {
                         .ok_or_else(|| LoadError::line(name, ln, format!("bad number '{t}'")))
                 })
                 .collect::<Result<_, _>>()?;
-            let want = |k: usize| {
-                if vals.len() == k {
-                    Ok(())
-                } else {
-                    Err(LoadError::line(
-                        name,
-                        ln,
-                        format!("'{key}' needs {k} values, found {}", vals.len()),
-                    ))
-                }
-            };
-            match key {
-                "eye" | "target" | "up" => {
-                    want(3)?;
-                    let v = Some(DVec3::new(vals[0], vals[1], vals[2]));
-                    match key {
-                        "eye" => eye = v,
-                        "target" => target = v,
-                        _ => up = v,
-                    }
-                }
-                "fovy" => {
-                    want(1)?;
-                    fovy = Some(vals[0])
-                }
-                "ortho_height" => {
-                    want(1)?;
-                    ortho = Some(vals[0])
-                }
-                "near" => {
-                    want(1)?;
-                    near = Some(vals[0])
-                }
-                "far" => {
-                    want(1)?;
-                    far = Some(vals[0])
-                }
-                "size" => {
-                    want(2)?;
-                    if vals
-                        .iter()
-                        .any(|v| *v < 1.0 || v.fract() != 0.0 || *v > 1e9)
-                    {
-                        return Err(LoadError::line(
-                            name,
-                            ln,
-                            "size must be two positive integers",
-                        ));
-                    }
-                    size = Some((vals[0] as u32, vals[1] as u32))
-                }
+            let want = match key {
+                "eye" | "target" | "up" => 3,
+                "fovy" | "ortho_height" | "near" | "far" => 1,
+                "size" => 2,
                 _ => return Err(LoadError::line(name, ln, format!("unknown key '{key}'"))),
+            };
+            if vals.len() != want {
+                return Err(LoadError::line(
+                    name,
+                    ln,
+                    format!("'{key}' needs {want} values, found {}", vals.len()),
+                ));
             }
+            seen.insert(key, (vals, ln));
         }
-        let need = |v: Option<DVec3>, k: &str| {
-            v.ok_or_else(|| LoadError::file(name, format!("missing '{k}' line")))
+        let get = |k: &str| seen.get(k).map(|(v, ln)| (v.as_slice(), *ln));
+        let need =
+            |k: &str| get(k).ok_or_else(|| LoadError::file(name, format!("missing '{k}' line")));
+        let vec3 = |k: &str| need(k).map(|(v, ln)| (DVec3::new(v[0], v[1], v[2]), ln));
+        let (eye, _) = vec3("eye")?;
+        let (target, target_ln) = vec3("target")?;
+        let (up, up_ln) = vec3("up")?;
+        let (near, near_ln) = need("near").map(|(v, ln)| (v[0], ln))?;
+        let (far, far_ln) = need("far").map(|(v, ln)| (v[0], ln))?;
+        let fovy = get("fovy").map(|(v, ln)| (v[0], ln));
+        let ortho = get("ortho_height").map(|(v, ln)| (v[0], ln));
+        let bad = |ln: usize, m: String| Err(LoadError::line(name, ln, m));
+        if target == eye {
+            return bad(target_ln, "target is the eye: no view direction".into());
+        }
+        if (target - eye).cross(up).length_squared() == 0.0 {
+            return bad(up_ln, "up is zero or parallel to the view direction".into());
+        }
+        let fovy_deg = match fovy {
+            Some((0.0, ln)) => match ortho {
+                Some((h, _)) if h > 0.0 => 0.0,
+                Some((h, hln)) => return bad(hln, format!("ortho_height must be > 0 (got {h})")),
+                None => {
+                    return bad(
+                        ln,
+                        "fovy 0 (orthographic) needs an 'ortho_height' line".into(),
+                    );
+                }
+            },
+            Some((f, ln)) if !(f > 0.0 && f < 180.0) => {
+                return bad(
+                    ln,
+                    format!("fovy must be in (0, 180) degrees, or 0 for orthographic (got {f})"),
+                );
+            }
+            Some((f, _)) => f,
+            None => DEFAULT_FOVY_DEG,
+        };
+        if fovy_deg > 0.0 && near <= 0.0 {
+            return bad(
+                near_ln,
+                format!("a perspective camera needs near > 0 (got {near})"),
+            );
+        }
+        if far <= near {
+            return bad(
+                far_ln,
+                format!("far must be beyond near (near {near}, far {far})"),
+            );
+        }
+        let size = match get("size") {
+            None => DEFAULT_SIZE,
+            Some((v, ln)) => {
+                let side = |x: f64| {
+                    (x >= 1.0 && x.fract() == 0.0 && x <= MAX_IMAGE_SIDE as f64).then_some(x as u32)
+                };
+                match (side(v[0]), side(v[1])) {
+                    (Some(w), Some(h)) => (w, h),
+                    _ => {
+                        return bad(
+                            ln,
+                            format!("size must be two integers in 1..={MAX_IMAGE_SIDE}"),
+                        );
+                    }
+                }
+            }
         };
         Ok(CamFile {
-            eye: need(eye, "eye")?,
-            target: need(target, "target")?,
-            up: need(up, "up")?,
-            fovy_deg: fovy.unwrap_or(DEFAULT_FOVY_DEG),
-            ortho_height: ortho,
-            near: near.ok_or_else(|| LoadError::file(name, "missing 'near' line"))?,
-            far: far.ok_or_else(|| LoadError::file(name, "missing 'far' line"))?,
-            size: size.unwrap_or((1024, 1024)),
+            eye,
+            target,
+            up,
+            fovy_deg,
+            ortho_height: ortho.map(|(h, _)| h),
+            near,
+            far,
+            size,
         })
     }
 
-    pub fn camera(&self, orthographic: bool) -> Camera {
-        let projection = match (orthographic, self.ortho_height) {
-            (true, Some(h)) => Projection::Orthographic { height: h },
+    /// The file's projection: orthographic when `fovy` is 0.
+    pub fn projection(&self) -> Projection {
+        match self.ortho_height {
+            Some(height) if self.fovy_deg == 0.0 => Projection::Orthographic { height },
             _ => Projection::Perspective {
                 fovy_deg: self.fovy_deg,
             },
-        };
+        }
+    }
+
+    pub fn camera(&self) -> Camera {
         Camera {
             eye: self.eye,
             target: self.target,
             up: self.up,
-            projection,
+            projection: self.projection(),
             near: self.near,
             far: self.far,
             width: self.size.0,
@@ -575,10 +616,77 @@ mod tests {
         let c = CamFile::parse(text, "x.cam").unwrap();
         assert_eq!(c.size, (640, 480));
         assert_eq!(
-            c.camera(true).projection,
-            Projection::Orthographic { height: 2.5 }
+            c.camera().projection,
+            Projection::Perspective { fovy_deg: 40.0 }
         );
         let e = CamFile::parse("eye 1 2\n", "x.cam").unwrap_err();
         assert_eq!(e.location, crate::Location::Line(1));
+    }
+
+    /// `fovy 0` is orthographic with the file's `ortho_height`, as `scenes.py` writes it.
+    #[test]
+    fn cam_file_fovy_zero_is_orthographic() {
+        let text = "eye 0 0 10\ntarget 0 0 0\nup 0 1 0\nfovy 0\northo_height 6\nnear 0.5\nfar 100\nsize 800 800\n";
+        let c = CamFile::parse(text, "cyclic_bars.cam").unwrap();
+        assert_eq!(
+            c.camera().projection,
+            Projection::Orthographic { height: 6.0 }
+        );
+        c.camera().validate().unwrap();
+    }
+
+    /// A leading byte-order mark and CRLF line ends read as the plain file does.
+    #[test]
+    fn cam_file_skips_a_bom_and_accepts_crlf() {
+        let plain = "eye 1 2 3\ntarget 0 0 0\nup 0 1 0\nfovy 30\nnear 0.1\nfar 10\nsize 64 48\n";
+        let dos = format!("\u{feff}{}", plain.replace('\n', "\r\n"));
+        assert_eq!(
+            CamFile::parse(&dos, "dos.cam").unwrap(),
+            CamFile::parse(plain, "plain.cam").unwrap()
+        );
+    }
+
+    /// Every bad value is reported at its own line of the named file.
+    #[test]
+    fn cam_file_errors_name_file_and_line() {
+        let base = [
+            "eye 0 0 10",
+            "target 0 0 0",
+            "up 0 1 0",
+            "fovy 40",
+            "near 0.5",
+            "far 100",
+        ];
+        let cases: [(usize, &str, &str); 6] = [
+            (3, "fovy 0", "ortho_height"),
+            (3, "fovy 180", "fovy"),
+            (3, "fovy -5", "fovy"),
+            (4, "near 0", "near"),
+            (5, "far 0.2", "far"),
+            (2, "up 0 0 1", "up"),
+        ];
+        for (k, line, word) in cases {
+            let mut lines = base.map(String::from).to_vec();
+            lines[k] = line.to_string();
+            let e = CamFile::parse(&lines.join("\n"), "v.cam").unwrap_err();
+            assert_eq!(e.file, "v.cam");
+            assert_eq!(e.location, crate::Location::Line(k + 1), "{line}: {e}");
+            assert!(e.message.contains(word), "{line}: {e}");
+        }
+    }
+
+    /// An eye so far away that the scene's depth rounds away is reported as such, not as a bad
+    /// near/far the user never gave.
+    #[test]
+    fn a_far_eye_is_named_as_the_problem() {
+        let spec = CameraSpec {
+            eye: Some(DVec3::splat(1e30)),
+            ..Default::default()
+        };
+        let e = spec
+            .resolve((DVec3::splat(-1.0), DVec3::splat(1.0)), None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("eye is too far") && !e.contains("near <"), "{e}");
     }
 }

@@ -41,11 +41,14 @@ use std::time::Instant;
 const EXAMPLES: &str = "\
 Examples:
   sightline render fixtures/cube.obj -o cube.png
+  sightline render fixtures/cube.obj -o cube.svg          (SVG and JSON: exact visible set)
+  sightline render fixtures/cyclic_bars.obj --cam fixtures/cyclic_bars.cam -o bars.svg
+  sightline render fixtures/cube.obj --fov 25 --eye=-3,2,4 -o near.png
   sightline render fixtures/seed_two_triangles.x3d --near 5 --far 10 --depth depth.png -o out.png
   sightline render mesh.stl --view front --ortho 2.5 --size 800x600 -o front.png
   sightline render mesh.ply --eye -1,2,3 --target 0,0,0 --fill id -o ids.png
   sightline render bunny.obj --cam bunny.cam -o - > bunny.png
-  sightline render part.obj --method bsp --stroke --light=-1,2,1 --specular 0.3 -o part.svg
+  sightline render part.obj --stroke --light -1,2,1 --specular 0.3 -o part.svg
   sightline render bunny.obj --cam bunny.cam --shading phong --specular 0.3 -o bunny.png
   sightline render glass.x3d --method abuffer -o glass.png
   sightline info mesh.obj --view iso";
@@ -72,8 +75,11 @@ enum Command {
     #[command(after_help = EXAMPLES)]
     Info(InfoArgs),
     /// Compare two methods' face ids at pixel centres (the z-buffer by default), and time both.
+    /// Covered pixels: covered by either method. Interior pixels: covered by the reference, with
+    /// one face and no background in their 3x3 neighbourhood there (edges sampled differently
+    /// by two correct methods are left out).
     #[command(
-        after_help = "Examples:\n  sightline compare fixtures/cube.obj --method bsp\n  sightline compare scene.obj --method painter --size 512x512\n  sightline compare scene.obj --method warnock --against scanline"
+        after_help = "Examples:\n  sightline compare fixtures/cube.obj --method bsp\n  sightline compare scene.obj --method painter --size 512x512\n  sightline compare scene.obj --method warnock --against scanline\n  sightline compare fixtures/cyclic_bars.obj --method painter --view front --diff diff.png"
     )]
     Compare(CompareArgs),
     /// Time each stage (load, project + cull, then one method) and report triangles per second.
@@ -104,10 +110,15 @@ struct CameraArgs {
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     up: Option<DVec3>,
     /// Perspective projection with this vertical field of view, degrees (default 40).
-    #[arg(long, value_name = "DEG", conflicts_with = "ortho")]
+    #[arg(
+        long,
+        value_name = "DEG",
+        conflicts_with = "ortho",
+        allow_negative_numbers = true
+    )]
     fov: Option<f64>,
     /// Orthographic projection with this view height, world units.
-    #[arg(long, value_name = "HEIGHT")]
+    #[arg(long, value_name = "HEIGHT", allow_negative_numbers = true)]
     ortho: Option<f64>,
     /// Near clipping distance (default: fitted to the scene).
     #[arg(long, allow_hyphen_values = true)]
@@ -116,12 +127,13 @@ struct CameraArgs {
     #[arg(long, allow_hyphen_values = true)]
     far: Option<f64>,
     /// Image size, WxH (default 1024x1024).
-    #[arg(long, value_parser = parse_size, value_name = "WxH")]
+    #[arg(long, value_parser = parse_size, value_name = "WxH", allow_hyphen_values = true)]
     size: Option<(u32, u32)>,
     /// A named view fitted to the scene's bounds.
     #[arg(long, value_enum)]
     view: Option<NamedView>,
-    /// A camera file (lines: eye, target, up, fovy, ortho_height, near, far, size).
+    /// A camera file (lines: eye x y z, target x y z, up x y z, fovy DEG, ortho_height H,
+    /// near N, far F, size W H); fovy 0 means orthographic with view height ortho_height.
     #[arg(long, value_name = "FILE")]
     cam: Option<PathBuf>,
     /// Back-face culling: auto culls closed, consistently oriented, one-sided meshes.
@@ -281,23 +293,24 @@ struct RenderArgs {
     /// Output file (.png, .svg or .json), or - for standard output.
     #[arg(short, long, value_name = "OUT")]
     output: PathBuf,
-    /// Output format (default: from the output's extension; for -, PNG for zbuffer, else SVG).
+    /// Output format (default: from the output's extension; for -, PNG unless --method is
+    /// bsp or painter, then SVG).
     #[arg(long, value_enum)]
     to: Option<OutputFormat>,
-    /// Rendering method.
-    #[arg(long, value_enum, default_value_t = Method::Zbuffer)]
-    method: Method,
-    /// Outline every region in SVG output (black, 0.5 px).
+    /// Rendering method (default: bsp, the exact visible set, for SVG and JSON; zbuffer for PNG).
+    #[arg(long, value_enum)]
+    method: Option<Method>,
+    /// Outline every region in SVG output (black, 0.5 px). SVG only.
     #[arg(long)]
     stroke: bool,
-    /// Ask SVG viewers not to anti-alias (shape-rendering="crispEdges").
+    /// Ask SVG viewers not to anti-alias (shape-rendering="crispEdges"). SVG only.
     #[arg(long)]
     crisp: bool,
     /// Pixel colours: flat shading, or face id + 1 as 24-bit RGB on black.
     #[arg(long, value_enum, default_value_t = Fill::Shade)]
     fill: Fill,
     /// Background colour for shaded images, r,g,b in 0..=255.
-    #[arg(long, value_parser = parse_rgb, default_value = "255,255,255")]
+    #[arg(long, value_parser = parse_rgb, default_value = "255,255,255", allow_hyphen_values = true)]
     background: [u8; 3],
     /// Also write the depth buffer as 16-bit grey PNG (0 near, 65535 far and background).
     #[arg(long, value_name = "FILE.png")]
@@ -311,19 +324,28 @@ struct RenderArgs {
     no_headlight: bool,
     /// Phong specular coefficient Ks (0 = matte); flat fills take each face's highlight at its
     /// centroid.
-    #[arg(long, value_name = "KS", default_value_t = 0.0)]
+    #[arg(
+        long,
+        value_name = "KS",
+        default_value_t = 0.0,
+        allow_negative_numbers = true
+    )]
     specular: f64,
     /// Phong exponent n of the highlight.
-    #[arg(long, value_name = "N", default_value_t = 32.0)]
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_SHININESS, allow_negative_numbers = true)]
     shininess: f64,
     /// How light varies across a face in image-space output (zbuffer, scanline, warnock):
     /// flat (one colour per face), gouraud (corners, interpolated) or phong (per pixel).
     #[arg(long, value_enum, default_value_t = ShadingArg::Flat)]
     shading: ShadingArg,
-    /// Print timings and counters to stderr.
+    /// Print timings and counters to stderr (never into the output, whose bytes depend only on
+    /// the input and the flags).
     #[arg(long)]
     stats: bool,
 }
+
+/// `--shininess` when not given.
+const DEFAULT_SHININESS: f64 = 32.0;
 
 #[derive(Args)]
 struct CompareArgs {
@@ -337,6 +359,10 @@ struct CompareArgs {
     /// The method to check it against (interior pixels: see `compare --help`).
     #[arg(long, value_enum, default_value_t = Method::Zbuffer)]
     against: Method,
+    /// Also write a PNG of the differences: red where the two cover a pixel with different faces,
+    /// blue where only one covers it, over the reference in grey (one level per face) on white.
+    #[arg(long, value_name = "FILE.png")]
+    diff: Option<PathBuf>,
 }
 
 #[derive(Args)]
@@ -356,16 +382,16 @@ struct BenchArgs {
     #[arg(long, value_enum)]
     format: Option<Format>,
     /// Instead of a file, a generated closed UV sphere of about this many triangles.
-    #[arg(long, value_name = "TRIANGLES", conflicts_with_all = ["input", "soup", "tori"])]
+    #[arg(long, value_name = "TRIANGLES", conflicts_with_all = ["input", "soup", "tori"], value_parser = parse_count, allow_negative_numbers = true)]
     sphere: Option<usize>,
     /// Instead of a file, this many random triangles in a unit cube (two-sided, interpenetrating).
-    #[arg(long, value_name = "TRIANGLES", conflicts_with_all = ["input", "tori"])]
+    #[arg(long, value_name = "TRIANGLES", conflicts_with_all = ["input", "tori"], value_parser = parse_count, allow_negative_numbers = true)]
     soup: Option<usize>,
     /// Instead of a file, two interlocked tori with this many segments around each ring.
-    #[arg(long, value_name = "SEGMENTS", conflicts_with = "input")]
+    #[arg(long, value_name = "SEGMENTS", conflicts_with = "input", value_parser = parse_count, allow_negative_numbers = true)]
     tori: Option<usize>,
     /// Runs per stage; the median is reported.
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = parse_count, allow_negative_numbers = true)]
     repeat: usize,
     /// Method to time after projection.
     #[arg(long, value_enum, default_value_t = BenchMethod::Zbuffer)]
@@ -408,6 +434,15 @@ fn parse_vec3(s: &str) -> Result<DVec3, String> {
             v.len()
         )),
     }
+}
+
+/// A count of at least 1.
+fn parse_count(s: &str) -> Result<usize, String> {
+    s.trim()
+        .parse::<usize>()
+        .ok()
+        .filter(|&n| n >= 1)
+        .ok_or_else(|| format!("'{s}' is not a whole number >= 1"))
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -480,7 +515,12 @@ fn load_scene(input: &InputArgs) -> sightline::Result<Scene> {
     let scene = scene?;
     let name = input.input.display();
     for w in &scene.stats.warnings {
-        eprintln!("warning: {name}: {w}");
+        // Most loader warnings start with the file name and line already.
+        if w.starts_with(&name.to_string()) {
+            eprintln!("warning: {w}");
+        } else {
+            eprintln!("warning: {name}: {w}");
+        }
     }
     Ok(scene)
 }
@@ -497,6 +537,7 @@ fn camera_for(args: &CameraArgs, scene: &Scene) -> sightline::Result<Camera> {
         }
         None => None,
     };
+    check_camera_flags(args, cam_file.as_ref())?;
     let spec = CameraSpec {
         cam_file,
         view: args.view,
@@ -515,6 +556,50 @@ fn camera_for(args: &CameraArgs, scene: &Scene) -> sightline::Result<Camera> {
     spec.resolve(bounds, scene.viewpoint.as_ref())
 }
 
+/// Each numeric camera flag within its own range, named in the message (before the camera is
+/// built, where a bad value would surface as some other part's error).
+fn check_camera_flags(args: &CameraArgs, cam_file: Option<&CamFile>) -> sightline::Result<()> {
+    let bad = |m: String| Err(sightline::Error::Camera(m));
+    if let Some(f) = args.fov
+        && !(f > 0.0 && f < 180.0)
+    {
+        return bad(format!("--fov must be in (0, 180) degrees (got {f})"));
+    }
+    if let Some(h) = args.ortho
+        && !(h > 0.0 && h.is_finite())
+    {
+        return bad(format!("--ortho must be a view height > 0 (got {h})"));
+    }
+    for (flag, v) in [("--near", args.near), ("--far", args.far)] {
+        if let Some(v) = v
+            && !v.is_finite()
+        {
+            return bad(format!("{flag} must be a finite distance (got {v})"));
+        }
+    }
+    let from_file_ortho =
+        cam_file.is_some_and(|c| matches!(c.projection(), Projection::Orthographic { .. }));
+    let perspective = args.ortho.is_none() && (args.fov.is_some() || !from_file_ortho);
+    for (flag, v) in [("--near", args.near), ("--far", args.far)] {
+        if let Some(v) = v
+            && perspective
+            && v <= 0.0
+        {
+            return bad(format!(
+                "{flag} must be > 0 for a perspective camera (got {v}; orthographic views, --ortho, take any value)"
+            ));
+        }
+    }
+    if let (Some(n), Some(f)) = (args.near, args.far)
+        && f <= n
+    {
+        return bad(format!(
+            "--near must be less than --far (near {n}, far {f})"
+        ));
+    }
+    Ok(())
+}
+
 fn output_format(a: &RenderArgs) -> sightline::Result<OutputFormat> {
     if let Some(f) = a.to {
         return Ok(f);
@@ -527,7 +612,7 @@ fn output_format(a: &RenderArgs) -> sightline::Result<OutputFormat> {
         Some("png") => OutputFormat::Png,
         Some("svg") => OutputFormat::Svg,
         Some("json") => OutputFormat::Json,
-        _ if a.output.as_os_str() == "-" => match a.method.is_raster() {
+        _ if a.output.as_os_str() == "-" => match a.method.is_none_or(Method::is_raster) {
             true => OutputFormat::Png,
             false => OutputFormat::Svg,
         },
@@ -538,6 +623,50 @@ fn output_format(a: &RenderArgs) -> sightline::Result<OutputFormat> {
             )));
         }
     })
+}
+
+/// Would this run dump a binary PNG onto a terminal (`-o -` with standard output a terminal)?
+/// Text (SVG, JSON) is fine there.
+fn refuses_binary_output(format: OutputFormat, output: &Path, stdout_is_terminal: bool) -> bool {
+    format == OutputFormat::Png && output.as_os_str() == "-" && stdout_is_terminal
+}
+
+/// The first flag given that this output would ignore, with why; `None` when all apply.
+fn ignored_flag(a: &RenderArgs, format: OutputFormat) -> Option<String> {
+    let name = |f: OutputFormat| match f {
+        OutputFormat::Png => "PNG",
+        OutputFormat::Svg => "SVG",
+        OutputFormat::Json => "JSON",
+    };
+    let svg_only = [("--stroke", a.stroke), ("--crisp", a.crisp)];
+    if let Some((flag, _)) = svg_only.iter().find(|(_, given)| *given)
+        && format != OutputFormat::Svg
+    {
+        return Some(format!(
+            "{flag} applies to SVG output only (this run writes {})",
+            name(format)
+        ));
+    }
+    // Flags that change the shaded colours (values other than the defaults).
+    let lighting = [
+        ("--specular", a.specular != 0.0),
+        ("--shininess", a.shininess != DEFAULT_SHININESS),
+        ("--light", !a.light.is_empty()),
+        ("--no-headlight", a.no_headlight),
+        ("--shading", a.shading != ShadingArg::Flat),
+    ];
+    let (flag, _) = lighting.iter().find(|(_, given)| *given)?;
+    if a.fill == Fill::Id {
+        return Some(format!(
+            "{flag} changes shaded colours: it does not apply to --fill id (face ids as colours)"
+        ));
+    }
+    if format == OutputFormat::Json {
+        return Some(format!(
+            "{flag} changes colours: it does not apply to JSON output (regions and materials, no colours)"
+        ));
+    }
+    None
 }
 
 /// The drawing of an object-space method, with its stats. `merge_surfaces`: draw coplanar faces
@@ -566,29 +695,39 @@ fn run_method(
 
 fn render(a: RenderArgs) -> sightline::Result<()> {
     let format = output_format(&a)?;
-    if a.method.is_raster() && format != OutputFormat::Png {
+    // The exact visible set for vector output; the reference z-buffer for pixels.
+    let method = a.method.unwrap_or(match format {
+        OutputFormat::Png => Method::Zbuffer,
+        OutputFormat::Svg | OutputFormat::Json => Method::Bsp,
+    });
+    if refuses_binary_output(format, &a.output, std::io::stdout().is_terminal()) {
+        return Err(sightline::Error::Output(
+            "not writing a binary PNG to a terminal: redirect standard output (-o - > out.png), or give a file (-o out.png)".into(),
+        ));
+    }
+    if let Some(message) = ignored_flag(&a, format) {
+        return Err(sightline::Error::Output(message));
+    }
+    if method.is_raster() && format != OutputFormat::Png {
         return Err(sightline::Error::Output(format!(
             "--method {} draws pixels: write it as PNG (use --method bsp for SVG or JSON)",
-            a.method.name()
+            method.name()
         )));
     }
-    if a.depth.is_some() && a.method != Method::Zbuffer {
+    if a.depth.is_some() && method != Method::Zbuffer {
         return Err(sightline::Error::Output(
             "--depth needs --method zbuffer".into(),
         ));
     }
     if a.shading != ShadingArg::Flat
-        && !matches!(
-            a.method,
-            Method::Zbuffer | Method::Scanline | Method::Warnock
-        )
+        && !matches!(method, Method::Zbuffer | Method::Scanline | Method::Warnock)
     {
         return Err(sightline::Error::Output(format!(
             "--shading {} needs --method zbuffer, scanline or warnock ({} draws flat colours)",
             clap::ValueEnum::to_possible_value(&a.shading)
                 .map(|v| v.get_name().to_string())
                 .unwrap_or_default(),
-            a.method.name()
+            method.name()
         )));
     }
     for (name, v) in [("--specular", a.specular), ("--shininess", a.shininess)] {
@@ -622,11 +761,18 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
     let t1 = Instant::now();
     let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
     let t_project = t1.elapsed();
+    if prepared.screen.polys.is_empty() {
+        let st = &prepared.screen.stats;
+        eprintln!(
+            "warning: the camera sees none of the {} faces ({} outside the view, {} back faces culled): the output shows only the background",
+            st.faces, st.frustum_culled, st.backface_culled
+        );
+    }
     let bg = a.background.map(|c| c as f64 / 255.0);
     let t2 = Instant::now();
-    let (bytes, detail) = if a.method.is_raster() {
+    let (bytes, detail) = if method.is_raster() {
         let r = run_raster(
-            a.method,
+            method,
             &scene,
             &prepared,
             &camera,
@@ -636,7 +782,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
         );
         use sightline::raster::lighting;
         let textured = scene.material_textures.iter().any(Option::is_some);
-        if textured && a.method == Method::Abuffer && a.fill == Fill::Shade {
+        if textured && method == Method::Abuffer && a.fill == Fill::Shade {
             eprintln!(
                 "warning: the A-buffer blends flat colours: textures are not applied (use --method zbuffer, scanline or warnock)"
             );
@@ -686,7 +832,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
         )
     } else {
         let merge = format != OutputFormat::Json;
-        let mut result = run_method(a.method, &scene, &prepared, &camera, a.fill, merge);
+        let mut result = run_method(method, &scene, &prepared, &camera, a.fill, merge);
         if result.drawing.background.is_none() {
             result.drawing.background = Some(bg);
         }
@@ -701,7 +847,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             }
             OutputFormat::Json => {
                 let mut stats = result.stats.clone();
-                stats.insert("method".into(), a.method.name().into());
+                stats.insert("method".into(), method.name().into());
                 sightline::output::json::write_json(&result.drawing, &scene, &stats).into_bytes()
             }
             OutputFormat::Png => {
@@ -723,7 +869,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             "load {:.3}s, project+cull {:.3}s, {} {:.3}s",
             t_load.as_secs_f64(),
             t_project.as_secs_f64(),
-            a.method.name(),
+            method.name(),
             t_method.as_secs_f64()
         );
         eprintln!(
@@ -774,6 +920,10 @@ fn compare(a: CompareArgs) -> sightline::Result<()> {
         camera.width as usize,
         camera.height as usize,
     );
+    if let Some(path) = &a.diff {
+        let image = pipeline::diff_image(&reference, &ids);
+        write_atomic(path, &png::encode_rgb(camera.width, camera.height, image)?)?;
+    }
     let pct = |n: usize, d: usize| 100.0 * n as f64 / d.max(1) as f64;
     println!(
         "{} vs {} at {}x{}:",
@@ -1075,4 +1225,24 @@ fn describe(path: &Path, scene: &Scene, camera: &Camera, p: &pipeline::Prepared)
     let _ = writeln!(o, "two-sided faces: {}", an.two_sided_faces);
     let _ = writeln!(o, "warnings: {}", scene.stats.warnings.len());
     o
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Only a PNG to standard output on a terminal is refused; files, pipes and text are fine.
+    #[test]
+    fn binary_png_is_refused_on_a_terminal_only() {
+        let dash = Path::new("-");
+        assert!(refuses_binary_output(OutputFormat::Png, dash, true));
+        assert!(!refuses_binary_output(OutputFormat::Png, dash, false));
+        assert!(!refuses_binary_output(
+            OutputFormat::Png,
+            Path::new("a.png"),
+            true
+        ));
+        assert!(!refuses_binary_output(OutputFormat::Svg, dash, true));
+        assert!(!refuses_binary_output(OutputFormat::Json, dash, true));
+    }
 }

@@ -119,7 +119,8 @@ pub struct IdComparison {
     pub covered: usize,
     /// Covered pixels whose ids differ.
     pub covered_mismatch: usize,
-    /// Pixels whose 3x3 neighbourhood (clipped to the image) holds one id in the reference.
+    /// Pixels the reference covers whose 3x3 neighbourhood (clipped to the image) holds one face
+    /// id and no background in the reference: a subset of the covered pixels.
     pub interior: usize,
     /// Interior pixels whose ids differ.
     pub interior_mismatch: usize,
@@ -142,8 +143,11 @@ pub fn compare_ids(
                 c.covered_mismatch += differ as usize;
             }
             let v = reference[k];
-            let interior = (j.saturating_sub(1)..(j + 2).min(h))
-                .all(|y| (i.saturating_sub(1)..(i + 2).min(w)).all(|x| reference[y * w + x] == v));
+            // Background around background is not interior: only covered pixels count.
+            let interior = v.is_some()
+                && (j.saturating_sub(1)..(j + 2).min(h)).all(|y| {
+                    (i.saturating_sub(1)..(i + 2).min(w)).all(|x| reference[y * w + x] == v)
+                });
             if interior {
                 c.interior += 1;
                 c.interior_mismatch += differ as usize;
@@ -151,4 +155,80 @@ pub fn compare_ids(
         }
     }
     c
+}
+
+/// Colour of a pixel where the two images cover different faces.
+pub const DIFF_MISMATCH: [u8; 3] = [255, 0, 0];
+/// Colour of a pixel that only one of the two images covers.
+pub const DIFF_COVERAGE: [u8; 3] = [0, 96, 255];
+
+/// A picture of where `ids` differs from `reference` (row-major RGB): [`DIFF_MISMATCH`] where both
+/// cover the pixel with different faces, [`DIFF_COVERAGE`] where only one covers it; elsewhere
+/// the reference in grey, one level per face id (so face boundaries show), background white.
+pub fn diff_image(reference: &[Option<u32>], ids: &[Option<u32>]) -> Vec<[u8; 3]> {
+    reference
+        .iter()
+        .zip(ids)
+        .map(|(r, m)| match (r, m) {
+            (Some(a), Some(b)) if a != b => DIFF_MISMATCH,
+            (Some(_), None) | (None, Some(_)) => DIFF_COVERAGE,
+            (Some(id), _) => {
+                // A hash of the id spreads neighbouring faces over 96..=207.
+                let g = 96 + (id.wrapping_mul(0x9E37_79B1) >> 24) % 112;
+                [g as u8; 3]
+            }
+            (None, None) => [255; 3],
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An 8x8 reference with face 7 on the 4x4 block at (2..6, 2..6).
+    fn block() -> Vec<Option<u32>> {
+        (0..64)
+            .map(|k| {
+                let (i, j) = (k % 8, k / 8);
+                ((2..6).contains(&i) && (2..6).contains(&j)).then_some(7)
+            })
+            .collect()
+    }
+
+    /// Interior pixels are covered ones: the 2x2 middle of the block, never the background.
+    #[test]
+    fn interior_pixels_are_covered_pixels_away_from_edges() {
+        let r = block();
+        let c = compare_ids(&r, &r, 8, 8);
+        assert_eq!((c.covered, c.interior), (16, 4));
+        assert_eq!((c.covered_mismatch, c.interior_mismatch), (0, 0));
+        // A wrong id in the middle is an interior mismatch; a stray pixel on the background is a
+        // covered mismatch only.
+        let mut m = r.clone();
+        m[3 * 8 + 3] = Some(9);
+        m[0] = Some(7);
+        let c = compare_ids(&r, &m, 8, 8);
+        assert_eq!((c.covered, c.covered_mismatch), (17, 2));
+        assert_eq!((c.interior, c.interior_mismatch), (4, 1));
+    }
+
+    #[test]
+    fn diff_image_marks_mismatch_and_coverage() {
+        let r = block();
+        let mut m = r.clone();
+        m[3 * 8 + 3] = Some(9);
+        m[0] = Some(7);
+        m[2 * 8 + 2] = None;
+        let d = diff_image(&r, &m);
+        assert_eq!(d[3 * 8 + 3], DIFF_MISMATCH);
+        assert_eq!(d[0], DIFF_COVERAGE);
+        assert_eq!(d[2 * 8 + 2], DIFF_COVERAGE);
+        assert_eq!(d[1], [255; 3], "background");
+        let g = d[4 * 8 + 4];
+        assert!(
+            g[0] == g[1] && g[1] == g[2] && (96..208).contains(&g[0]),
+            "{g:?}"
+        );
+    }
 }

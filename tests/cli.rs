@@ -340,7 +340,14 @@ fn render_bsp_writes_svg_and_json() {
         v["faces"].as_array().is_some_and(|f| f.len() == 3),
         "iso view of a cube: 3 faces"
     );
-    let o = sightline(&["render", "fixtures/cube.obj", "-o", "x.svg"]);
+    let o = sightline(&[
+        "render",
+        "fixtures/cube.obj",
+        "--method",
+        "zbuffer",
+        "-o",
+        "x.svg",
+    ]);
     assert_eq!(o.status.code(), Some(1), "the z-buffer cannot write SVG");
 }
 
@@ -574,4 +581,481 @@ fn png_to_a_closed_standard_output_is_not_an_error() {
         .unwrap();
     assert!(status.success(), "{status:?}: {err}");
     assert!(!err.contains("error") && !err.contains("panicked"), "{err}");
+}
+
+/// Runs the binary and returns (exit code, stderr).
+fn run_err(args: &[&str]) -> (Option<i32>, String) {
+    let o = sightline(args);
+    (
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr).to_string(),
+    )
+}
+
+/// The same input and flags give the same bytes: timings go to `--stats` (stderr), never into
+/// the output (JSON carried `visibility_seconds` and the painter's `sort_seconds`).
+#[test]
+fn outputs_are_byte_identical_across_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&str, &[&str]); 6] = [
+        ("a.svg", &[]),
+        ("a.json", &[]),
+        ("p.json", &["--method", "painter"]),
+        ("z.png", &["--method", "zbuffer"]),
+        ("b.png", &["--method", "bsp"]),
+        ("s.json", &["--stats"]),
+    ];
+    for (name, extra) in cases {
+        let run = |k: usize| -> Vec<u8> {
+            let out = dir.path().join(format!("{k}{name}"));
+            let mut args = vec!["render", "fixtures/cyclic_bars.obj", "--size", "96x72"];
+            args.extend_from_slice(extra);
+            args.extend(["-o", out.to_str().unwrap()]);
+            let o = sightline(&args);
+            assert!(
+                o.status.success(),
+                "{name}: {}",
+                String::from_utf8_lossy(&o.stderr)
+            );
+            std::fs::read(&out).unwrap()
+        };
+        let first = run(0);
+        assert!(first.len() > 100, "{name}");
+        assert!(
+            !String::from_utf8_lossy(&first).contains("seconds"),
+            "{name}: no timing in the output"
+        );
+        assert_eq!(first, run(1), "{name}: two runs, same bytes");
+    }
+}
+
+/// `fovy 0` in a camera file is orthographic with its `ortho_height` (as
+/// `../shared/compare/scenes.py` writes them): the fixture renders as the same camera given by
+/// flags, and `info` says orthographic.
+#[test]
+fn orthographic_cam_file_renders_orthographically() {
+    let by_file = sightline(&[
+        "render",
+        "fixtures/cyclic_bars.obj",
+        "--cam",
+        "fixtures/cyclic_bars.cam",
+        "-o",
+        "-",
+        "--fill",
+        "id",
+    ]);
+    assert!(
+        by_file.status.success(),
+        "{}",
+        String::from_utf8_lossy(&by_file.stderr)
+    );
+    let by_flags = sightline(&[
+        "render",
+        "fixtures/cyclic_bars.obj",
+        "--eye",
+        "0,0,10",
+        "--target",
+        "0,0,0",
+        "--up",
+        "0,1,0",
+        "--ortho",
+        "6",
+        "--near",
+        "0.5",
+        "--far",
+        "100",
+        "--size",
+        "160x160",
+        "-o",
+        "-",
+        "--fill",
+        "id",
+    ]);
+    assert!(by_flags.status.success());
+    assert_eq!(by_file.stdout, by_flags.stdout);
+    let img = decode(&by_file.stdout).to_rgb8();
+    assert_eq!(img.dimensions(), (160, 160));
+    assert!(img.pixels().any(|p| p.0 != [0, 0, 0]), "the bars are seen");
+    let o = sightline(&[
+        "info",
+        "fixtures/cyclic_bars.obj",
+        "--cam",
+        "fixtures/cyclic_bars.cam",
+    ]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("camera: orthographic, height 6"), "{text}");
+}
+
+/// A bad value in a camera file is reported with the file and its line; a BOM and CRLF line
+/// ends are read as the plain file.
+#[test]
+fn cam_file_errors_name_file_and_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.cam");
+    std::fs::write(
+        &bad,
+        "eye 0 0 10\ntarget 0 0 0\nup 0 1 0\nfovy 200\nnear 1\nfar 9\n",
+    )
+    .unwrap();
+    let (code, err) = run_err(&["info", "fixtures/cube.obj", "--cam", bad.to_str().unwrap()]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains("bad.cam:4") && err.contains("fovy"), "{err}");
+    let dos = dir.path().join("dos.cam");
+    let text = std::fs::read_to_string("fixtures/cyclic_bars.cam").unwrap();
+    std::fs::write(&dos, format!("\u{feff}{}", text.replace('\n', "\r\n"))).unwrap();
+    let o = sightline(&[
+        "info",
+        "fixtures/cyclic_bars.obj",
+        "--cam",
+        dos.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("orthographic, height 6"));
+}
+
+/// Every camera file of the shared benchmark meshes loads and makes a valid camera.
+#[test]
+fn every_shared_cam_file_loads() {
+    let dir = Path::new("../shared/meshes/cams");
+    if !dir.is_dir() {
+        println!(
+            "{} is absent: skipping the shared camera files",
+            dir.display()
+        );
+        return;
+    }
+    let mut n = 0;
+    for e in std::fs::read_dir(dir).unwrap() {
+        let path = e.unwrap().path();
+        if path.extension().is_some_and(|x| x == "cam") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            let name = path.display().to_string();
+            let cam = sightline::camera::CamFile::parse(&text, &name)
+                .unwrap_or_else(|e| panic!("{e}"))
+                .camera();
+            cam.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+            n += 1;
+        }
+    }
+    assert!(n > 0, "no .cam file in {}", dir.display());
+}
+
+/// A negative number after a space is a value (not an unknown flag) for every numeric flag, and
+/// each bad value reaches its own range check, whose message names the flag.
+#[test]
+fn negative_values_reach_each_flags_range_check() {
+    // Every case fails before rendering: no --size needed (the --size case tests it).
+    let render = ["render", "fixtures/cube.obj", "-o", "-"];
+    let cases: [(&[&str], &str); 12] = [
+        (&["--fov", "-40"], "--fov must be in (0, 180)"),
+        (&["--fov=-40"], "--fov must be in (0, 180)"),
+        (&["--fov", "0"], "--fov must be in (0, 180)"),
+        (&["--ortho", "-2"], "--ortho must be a view height > 0"),
+        (&["--specular", "-1"], "--specular must be"),
+        (&["--shininess", "-3"], "--shininess must be"),
+        (&["--near", "-1"], "--near must be > 0"),
+        (&["--far", "-1"], "--far must be > 0"),
+        (
+            &["--near", "3", "--far", "2"],
+            "--near must be less than --far",
+        ),
+        (&["--size", "-3x4"], "'-3' is not a positive integer"),
+        (&["--background", "-1,0,0"], "'-1' is not in 0..=255"),
+        (&["--light", "-1,0"], "three numbers"),
+    ];
+    for (flags, want) in cases {
+        let mut args = render.to_vec();
+        args.extend_from_slice(flags);
+        let (code, err) = run_err(&args);
+        assert!(code.is_some_and(|c| c != 0), "{flags:?} accepted");
+        assert!(
+            err.contains(want) && !err.contains("unexpected argument"),
+            "{flags:?}: {err}"
+        );
+    }
+    for flags in [["--sphere", "-4"], ["--repeat", "-2"]] {
+        let mut args = vec!["bench", "--tori", "8"];
+        if flags[0] == "--sphere" {
+            args = vec!["bench"];
+        }
+        args.extend_from_slice(&flags);
+        let (code, err) = run_err(&args);
+        assert_eq!(code, Some(2), "{flags:?}");
+        assert!(
+            err.contains(flags[0]) && err.contains(">= 1"),
+            "{flags:?}: {err}"
+        );
+    }
+    // Valid negative values work both ways.
+    let a = sightline(
+        &[
+            &render[..],
+            &[
+                "--size", "16x16", "--ortho", "3", "--near", "-5", "--fill", "id",
+            ],
+        ]
+        .concat(),
+    );
+    let b = sightline(
+        &[
+            &render[..],
+            &["--size=16x16", "--ortho=3", "--near=-5", "--fill", "id"],
+        ]
+        .concat(),
+    );
+    assert!(a.status.success(), "{}", String::from_utf8_lossy(&a.stderr));
+    assert_eq!(a.stdout, b.stdout);
+}
+
+/// An eye so far that the scene's depth rounds away says so, not that near/far (never given)
+/// are wrong.
+#[test]
+fn a_far_eye_is_the_reported_problem() {
+    let (code, err) = run_err(&[
+        "render",
+        "fixtures/cube.obj",
+        "-o",
+        "-",
+        "--eye",
+        "1e30,1e30,1e30",
+    ]);
+    assert_eq!(code, Some(1));
+    assert!(
+        err.contains("eye is too far") && !err.contains("near"),
+        "{err}"
+    );
+}
+
+/// A camera looking away from the scene writes the empty picture (background PNG, SVG with no
+/// region, JSON with no face), warns on stderr, and succeeds.
+#[test]
+fn a_camera_that_sees_nothing_writes_empty_output_and_warns() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["e.png", "e.svg", "e.json"] {
+        let out = dir.path().join(name);
+        let o = sightline(&[
+            "render",
+            "fixtures/cube.obj",
+            "--eye",
+            "10,0,0",
+            "--target",
+            "20,0,0",
+            "--size",
+            "8x8",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{name}: {err}");
+        assert!(
+            err.contains("warning: the camera sees none"),
+            "{name}: {err}"
+        );
+        let bytes = std::fs::read(&out).unwrap();
+        match name {
+            "e.png" => assert!(decode(&bytes).to_rgb8().pixels().all(|p| p.0 == [255; 3])),
+            "e.svg" => assert!(!String::from_utf8_lossy(&bytes).contains("<path")),
+            _ => {
+                let v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+                assert_eq!(v["faces"], serde_json::json!([]));
+            }
+        }
+    }
+}
+
+/// `-o -` on a terminal refuses a binary PNG (text formats are fine). Runs the binary under
+/// `script`, which gives it a pseudo-terminal, when `script` is installed.
+#[test]
+fn png_is_not_written_onto_a_terminal() {
+    let script = |cmd: &str| {
+        Command::new("script")
+            .args(["-qec", cmd, "/dev/null"])
+            .output()
+    };
+    let bin = env!("CARGO_BIN_EXE_sightline");
+    let Ok(o) = script(&format!("{bin} render fixtures/cube.obj --size 8x8 -o -")) else {
+        println!("`script` is not installed: the terminal decision is tested in main.rs only");
+        return;
+    };
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(!o.status.success(), "{text}");
+    assert!(
+        text.contains("not writing a binary PNG to a terminal"),
+        "{text}"
+    );
+    assert!(!text.contains("PNG\r\n\u{1a}"), "no PNG bytes: {text}");
+    let o = script(&format!(
+        "{bin} render fixtures/cube.obj --size 8x8 --to svg -o -"
+    ))
+    .unwrap();
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stdout).contains("<svg"));
+}
+
+/// A flag the output would ignore is an error that says so.
+#[test]
+fn flags_that_do_not_apply_to_the_output_are_errors() {
+    let cases: [(&str, &[&str], &str); 6] = [
+        (
+            "x.png",
+            &["--stroke"],
+            "--stroke applies to SVG output only",
+        ),
+        ("x.json", &["--crisp"], "--crisp applies to SVG output only"),
+        (
+            "x.png",
+            &["--fill", "id", "--specular", "0.5"],
+            "--specular",
+        ),
+        (
+            "x.svg",
+            &["--fill", "id", "--no-headlight"],
+            "--no-headlight",
+        ),
+        (
+            "x.png",
+            &["--fill", "id", "--shading", "phong"],
+            "--shading",
+        ),
+        ("x.json", &["--light", "1,2,3"], "does not apply to JSON"),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    for (name, flags, want) in cases {
+        let out = dir.path().join(name);
+        let mut args = vec!["render", "fixtures/cube.obj", "--size", "16x16", "-o"];
+        args.push(out.to_str().unwrap());
+        args.extend_from_slice(flags);
+        let (code, err) = run_err(&args);
+        assert_eq!(code, Some(1), "{name} {flags:?}");
+        assert!(err.contains(want), "{name} {flags:?}: {err}");
+        assert!(!out.exists());
+    }
+    // Where they apply, they are accepted.
+    let out = dir.path().join("ok.svg");
+    let o = sightline(&[
+        "render",
+        "fixtures/cube.obj",
+        "--stroke",
+        "--crisp",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// Without --method the output chooses: the exact visible set for SVG and JSON, the z-buffer for
+/// PNG.
+#[test]
+fn default_method_follows_the_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    for (name, method) in [("d.svg", "bsp"), ("d.json", "bsp"), ("d.png", "zbuffer")] {
+        let o = sightline(&[
+            "render",
+            "fixtures/cube.obj",
+            "--size",
+            "32x32",
+            "-o",
+            &path(name),
+        ]);
+        assert!(
+            o.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let explicit = format!("m{name}");
+        let o = sightline(&[
+            "render",
+            "fixtures/cube.obj",
+            "--size",
+            "32x32",
+            "--method",
+            method,
+            "-o",
+            &path(&explicit),
+        ]);
+        assert!(o.status.success());
+        assert_eq!(
+            std::fs::read(path(name)).unwrap(),
+            std::fs::read(path(&explicit)).unwrap(),
+            "{name}"
+        );
+    }
+}
+
+/// A loader warning names the file once.
+#[test]
+fn warnings_name_the_file_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let junk = dir.path().join("junk.obj");
+    std::fs::write(&junk, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\njunk\n").unwrap();
+    let (code, err) = run_err(&["info", junk.to_str().unwrap()]);
+    assert_eq!(code, Some(0), "{err}");
+    let line = err
+        .lines()
+        .find(|l| l.starts_with("warning:"))
+        .expect("a warning");
+    assert_eq!(line.matches("junk.obj").count(), 1, "{line}");
+    assert!(line.contains("junk.obj:5"), "{line}");
+}
+
+/// (covered, interior) of `compare`'s report.
+fn compare_counts(args: &[&str]) -> (usize, usize) {
+    let o = sightline(args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout).to_string();
+    let count = |label: &str| -> usize {
+        let line = text
+            .lines()
+            .find(|l| l.trim_start().starts_with(label))
+            .unwrap();
+        line.split_whitespace().nth(2).unwrap().parse().unwrap()
+    };
+    (count("covered pixels"), count("interior pixels"))
+}
+
+/// Interior pixels are covered pixels: background never counts as interior.
+#[test]
+fn compare_counts_interior_within_covered() {
+    for f in ["fixtures/cube.obj", "fixtures/cyclic_bars.obj"] {
+        let (covered, interior) = compare_counts(&["compare", f, "--size", "160x120"]);
+        assert!(
+            0 < interior && interior < covered,
+            "{f}: {interior} of {covered}"
+        );
+    }
+}
+
+/// `compare --diff` draws mismatches in red over the reference in grey: none for the exact set
+/// against the z-buffer, some for the painter on cyclic bars.
+#[test]
+fn compare_diff_marks_mismatched_pixels_in_red() {
+    let dir = tempfile::tempdir().unwrap();
+    let red_pixels = |file: &str, method: &str| -> usize {
+        let out = dir.path().join(format!("{method}.png"));
+        let o = sightline(&[
+            "compare",
+            file,
+            "--method",
+            method,
+            "--view",
+            "front",
+            "--size",
+            "96x72",
+            "--diff",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let img = decode(&std::fs::read(&out).unwrap()).to_rgb8();
+        assert_eq!(img.dimensions(), (96, 72));
+        assert!(img.pixels().any(|p| p.0 == [255; 3]), "white background");
+        assert!(
+            img.pixels()
+                .any(|p| p.0[0] == p.0[1] && p.0[1] == p.0[2] && p.0[0] < 255),
+            "grey faces"
+        );
+        img.pixels().filter(|p| p.0 == [255, 0, 0]).count()
+    };
+    assert_eq!(red_pixels("fixtures/cyclic_bars.obj", "bsp"), 0);
+    assert!(red_pixels("fixtures/cyclic_bars.obj", "painter") > 0);
 }

@@ -29,7 +29,7 @@ pub fn shared_meshes() -> Vec<(String, Scene, Camera)> {
         .find(|p| p.exists());
         let Some(mesh) = mesh else { continue };
         let text = std::fs::read_to_string(&cam_path).unwrap();
-        let cam = CamFile::parse(&text, &stem).unwrap().camera(false);
+        let cam = CamFile::parse(&text, &stem).unwrap().camera();
         let scene = sightline::load(&mesh, None).unwrap();
         out.push((stem, scene, cam));
     }

@@ -17,7 +17,8 @@
 //!       "draw_order": [ k, ... ]              per region, its index in the whole drawing's
 //!     }                                       back-to-front order (needed for translucency)
 //!   ],
-//!   "stats": { ... }                          the method's counters, keys sorted
+//!   "stats": { ... }                          the method's counters, keys sorted (no timings:
+//!                                             they go to `--stats` on stderr)
 //! }
 //! ```
 //!

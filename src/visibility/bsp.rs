@@ -36,7 +36,6 @@ use crate::project::ScreenScene;
 use crate::scene::Scene;
 use std::cmp::Ordering;
 use std::collections::BTreeMap;
-use std::time::Instant;
 
 /// Counters of one BSP run.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -531,7 +530,6 @@ impl super::VisibilityMethod for BspMethod {
         };
         put("polygons", screen.polys.len().into());
         put("translucent_painter_order", translucent.into());
-        let t = Instant::now();
         let (opaque, see_through) = if translucent {
             let l = layers(screen, blends);
             put("pieces", (l.coverage.inserted + l.bsp.pieces).into());
@@ -554,7 +552,6 @@ impl super::VisibilityMethod for BspMethod {
             "drawn_pieces_per_polygon",
             ((opaque.len() + see_through.len()) as f64 / screen.polys.len().max(1) as f64).into(),
         );
-        put("visibility_seconds", t.elapsed().as_secs_f64().into());
         put(
             "exact_fallbacks",
             (crate::exact::predicates::fallback_count() - fallbacks).into(),

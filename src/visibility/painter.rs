@@ -19,7 +19,6 @@ use crate::pipeline::Fill;
 use crate::project::ScreenScene;
 use crate::scene::Scene;
 use std::cmp::Reverse;
-use std::time::Instant;
 
 /// Depth-sort painter (approximate baseline).
 #[derive(Clone, Copy, Debug, Default)]
@@ -41,9 +40,7 @@ impl VisibilityMethod for Painter {
         camera: &Camera,
         fill: Fill,
     ) -> VisibilityResult {
-        let t = Instant::now();
         let order = painter_order(screen);
-        let sort_seconds = t.elapsed().as_secs_f64();
 
         let samples = Samples::new(screen.width, screen.height);
         let items: Vec<DrawItem> = order
@@ -64,7 +61,6 @@ impl VisibilityMethod for Painter {
 
         let mut stats = serde_json::Map::new();
         stats.insert("faces_drawn".into(), items.len().into());
-        stats.insert("sort_seconds".into(), sort_seconds.into());
         VisibilityResult {
             drawing: Drawing {
                 width: screen.width,
