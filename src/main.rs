@@ -29,7 +29,7 @@ use clap::{Args, Parser, Subcommand};
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use sightline::camera::{CamFile, Camera, CameraSpec, NamedView, Projection};
-use sightline::output::{png, write_atomic};
+use sightline::output::{png, write_atomic, write_with};
 use sightline::pipeline::{self, Fill};
 use sightline::project::CullMode;
 use sightline::scene::{self, Format, Scene};
@@ -770,7 +770,9 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
     }
     let bg = a.background.map(|c| c as f64 / 255.0);
     let t2 = Instant::now();
-    let (bytes, detail) = if method.is_raster() {
+    // What writes the output, streamed into the file (a drawing's PNG is rasterized by strips).
+    type Emit<'a> = Box<dyn FnOnce(&mut dyn std::io::Write) -> std::io::Result<()> + 'a>;
+    let (emit, detail): (Emit, _) = if method.is_raster() {
         let r = run_raster(
             method,
             &scene,
@@ -823,11 +825,13 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             ),
         };
         if let (Some(depth_path), Some(depth)) = (&a.depth, &r.depth) {
-            let d = png::encode_depth16(camera.width, camera.height, depth)?;
-            write_atomic(depth_path, &d)?;
+            write_with(depth_path, |w| {
+                png::write_depth16(w, camera.width, camera.height, depth)
+            })?;
         }
+        let (width, height) = (camera.width, camera.height);
         (
-            png::encode_rgb(camera.width, camera.height, image)?,
+            Box::new(move |w| png::write_rgb(w, width, height, &image)),
             r.detail,
         )
     } else {
@@ -837,32 +841,29 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             result.drawing.background = Some(bg);
         }
         let detail = serde_json::Value::Object(result.stats.clone()).to_string();
-        let bytes = match format {
+        let emit: Emit = match format {
             OutputFormat::Svg => {
                 let options = sightline::output::svg::SvgOptions {
                     stroke: a.stroke.then_some(([0.0; 3], 0.5)),
                     crisp: a.crisp,
                 };
-                sightline::output::svg::write_svg(&result.drawing, &options).into_bytes()
+                let svg = sightline::output::svg::write_svg(&result.drawing, &options);
+                Box::new(move |w| w.write_all(svg.as_bytes()))
             }
             OutputFormat::Json => {
                 let mut stats = result.stats.clone();
                 stats.insert("method".into(), method.name().into());
-                sightline::output::json::write_json(&result.drawing, &scene, &stats).into_bytes()
+                let json = sightline::output::json::write_json(&result.drawing, &scene, &stats);
+                Box::new(move |w| w.write_all(json.as_bytes()))
             }
             OutputFormat::Png => {
-                let colors = sightline::output::raster_drawing::colors(&result.drawing);
-                let px = colors
-                    .into_iter()
-                    .map(sightline::raster::shade::to_u8)
-                    .collect();
-                png::encode_rgb(camera.width, camera.height, px)?
+                Box::new(move |w| sightline::output::raster_drawing::write_png(&result.drawing, w))
             }
         };
-        (bytes, detail)
+        (emit, detail)
     };
     let t_method = t2.elapsed();
-    write_atomic(&a.output, &bytes)?;
+    write_with(&a.output, emit)?;
     if a.stats {
         let s = &prepared.screen.stats;
         eprintln!(

@@ -1,5 +1,17 @@
-//! Writing results. Files are written whole or not at all: bytes go to a temporary file in the
-//! target's directory, which is then renamed over the target. `-` means standard output.
+//! Writing results without ever destroying what the output path is.
+//!
+//! Invariants, by what the path names:
+//! - `-`: standard output. A reader that stops early (`| head`) ends the write quietly.
+//! - A regular file, or nothing yet: replaced whole or not at all. Bytes go to a temporary file
+//!   in the target's directory, renamed over the target once written and synced; a failed
+//!   write removes the temporary file and leaves the old file as it was. A replaced file keeps
+//!   its mode (and its owner and group where the process may set them); a new file gets
+//!   `0666 & !umask`, as open(2) gives.
+//! - A symlink: followed (chains too, a relative target resolved against the link's directory)
+//!   and its final target replaced as above, so the link stays a link. A dangling link creates
+//!   its target.
+//! - Anything else (FIFO, character device, socket, `/dev/stdout`, links through `/proc`):
+//!   opened and written in place, never renamed over.
 
 pub mod drawing;
 pub mod json;
@@ -8,33 +20,184 @@ pub mod raster_drawing;
 pub mod svg;
 
 use crate::error::Error;
-use std::io::Write;
-use std::path::Path;
+use std::fs::{File, Metadata, OpenOptions, Permissions};
+use std::io::{self, BufWriter, Write};
+use std::os::unix::fs::{MetadataExt, PermissionsExt};
+use std::path::{Path, PathBuf};
 
-/// Writes `bytes` to `path` atomically, or to stdout when `path` is `-`.
+/// Writes `bytes` to `path` by the rules of this module (atomically for regular files), or to
+/// stdout when `path` is `-`.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    write_with(path, |w| w.write_all(bytes))
+}
+
+/// Writes to `path` by the rules of this module whatever `write` writes into the (buffered)
+/// writer it is given, so outputs can be streamed. When `write` fails, a regular file is left
+/// as it was.
+pub fn write_with(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> Result<(), Error> {
     let io_err = |source| Error::Io {
         path: path.display().to_string(),
         source,
     };
     if path.as_os_str() == "-" {
-        let mut out = std::io::stdout().lock();
-        return match out.write_all(bytes).and_then(|()| out.flush()) {
-            // The reader stopped early (`| head`): it wanted no more, as Unix tools treat it.
-            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-            other => other.map_err(io_err),
-        };
+        return write_stdout(write).map_err(io_err);
     }
-    let dir = match path.parent() {
+    match target_of(path).map_err(io_err)? {
+        Target::Replace { path: target, old } => {
+            replace(&target, old.as_ref(), write).map_err(|source| Error::Io {
+                path: target.display().to_string(),
+                source,
+            })
+        }
+        Target::InPlace => write_in_place(path, write).map_err(io_err),
+    }
+}
+
+/// Where the bytes for an output path go.
+enum Target {
+    /// A regular file to replace (or create) at `path`, the end of any chain of links; `old` is
+    /// the file being replaced.
+    Replace {
+        path: PathBuf,
+        old: Option<Metadata>,
+    },
+    /// Not a regular file: open the given path and write into it.
+    InPlace,
+}
+
+/// Symlink hops followed before giving up, as the kernel's ELOOP limit.
+const MAX_LINKS: usize = 40;
+
+fn target_of(path: &Path) -> io::Result<Target> {
+    // The kernel follows every link (including /proc's magic ones) to say what is there.
+    let old = match std::fs::metadata(path) {
+        Ok(m) if !m.is_file() => return Ok(Target::InPlace),
+        Ok(m) => Some(m),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => None,
+        Err(e) => return Err(e),
+    };
+    // A regular file or nothing: find the path the links lead to, to replace it there.
+    let mut p = path.to_path_buf();
+    for _ in 0..MAX_LINKS {
+        match std::fs::symlink_metadata(&p) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let dir = p.parent().unwrap_or(Path::new(""));
+                // /proc/self/fd/1 and its kin name open files, not places: writing there means
+                // writing to that open file (as `cp x /dev/stdout` does).
+                if std::fs::canonicalize(if dir.as_os_str().is_empty() {
+                    Path::new(".")
+                } else {
+                    dir
+                })
+                .is_ok_and(|d| d.starts_with("/proc"))
+                {
+                    return Ok(Target::InPlace);
+                }
+                // Joined, never normalized: `..` in a target is the kernel's to resolve.
+                p = dir.join(std::fs::read_link(&p)?);
+            }
+            Ok(_) => return Ok(Target::Replace { path: p, old }),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => {
+                return Ok(Target::Replace { path: p, old });
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    Err(io::Error::other("too many levels of symbolic links"))
+}
+
+/// Replaces (or creates) the regular file `target` atomically.
+fn replace(
+    target: &Path,
+    old: Option<&Metadata>,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> io::Result<()> {
+    let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let mut tmp = tempfile::Builder::new()
+    // A new file: 0666 minus the umask (open(2) applies it). A replaced one: private until its
+    // old mode is set, before any byte is written.
+    let create_mode = if old.is_some() { 0o600 } else { 0o666 };
+    let tmp = tempfile::Builder::new()
         .prefix(".sightline-")
-        .tempfile_in(dir)
-        .map_err(io_err)?;
-    tmp.write_all(bytes).map_err(io_err)?;
-    tmp.as_file().sync_all().map_err(io_err)?;
-    tmp.persist(path).map_err(|e| io_err(e.error))?;
+        .permissions(Permissions::from_mode(create_mode))
+        .tempfile_in(dir)?;
+    if let Some(old) = old {
+        keep_owner_and_mode(tmp.as_file(), old)?;
+    }
+    let mut out = BufWriter::new(tmp.as_file());
+    write(&mut out)?;
+    out.flush()?;
+    drop(out);
+    tmp.as_file().sync_all()?;
+    tmp.persist(target).map_err(|e| e.error)?;
     Ok(())
+}
+
+/// Gives the new file the old one's owner, group and mode. Only root may give a file away, so
+/// an owner that cannot be kept is not an error (the file is then the writer's, as with any
+/// editor); the mode is set after, since a change of owner clears set-id bits.
+fn keep_owner_and_mode(file: &File, old: &Metadata) -> io::Result<()> {
+    let new = file.metadata()?;
+    if (new.uid(), new.gid()) != (old.uid(), old.gid()) {
+        let _ = std::os::unix::fs::fchown(file, Some(old.uid()), Some(old.gid()));
+    }
+    file.set_permissions(Permissions::from_mode(old.mode() & 0o7777))
+}
+
+/// Opens what is at `path` (FIFO, device, ...) and writes into it, without creating anything.
+fn write_in_place(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> io::Result<()> {
+    // O_TRUNC is ignored by FIFOs and devices, and empties a regular file reached through /proc
+    // (`-o /dev/stdout > file`), as `cp` does.
+    let file = OpenOptions::new().write(true).truncate(true).open(path)?;
+    let mut out = BufWriter::new(file);
+    write(&mut out)?;
+    out.flush()
+}
+
+fn write_stdout(write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> io::Result<()> {
+    let mut out = PipeEnd {
+        inner: BufWriter::new(io::stdout().lock()),
+        closed: false,
+    };
+    match write(&mut out).and_then(|()| out.flush()) {
+        // The reader stopped early (`| head`): it wanted no more, as Unix tools treat it.
+        // Encoders may rewrap the error, so the writer remembers what happened.
+        Err(_) if out.closed => Ok(()),
+        other => other,
+    }
+}
+
+/// A writer that remembers whether its reader went away (EPIPE).
+struct PipeEnd<W: Write> {
+    inner: W,
+    closed: bool,
+}
+
+impl<W: Write> PipeEnd<W> {
+    fn note<T>(&mut self, r: io::Result<T>) -> io::Result<T> {
+        if let Err(e) = &r {
+            self.closed |= e.kind() == io::ErrorKind::BrokenPipe;
+        }
+        r
+    }
+}
+
+impl<W: Write> Write for PipeEnd<W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        let r = self.inner.write(buf);
+        self.note(r)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        let r = self.inner.flush();
+        self.note(r)
+    }
 }

@@ -17,33 +17,88 @@
 //! sorted by first row), so an edge is visited once per row it spans and no item is tested at
 //! pixels outside its rows. [`colors`] touches each pixel once per item covering it (blending
 //! needs every layer); [`face_ids`] walks items front to back and writes each pixel once.
+//!
+//! Memory: rows are rasterized in strips of about [`STRIP_PIXELS`] pixels ([`color_strips`],
+//! [`face_id_strips`]; an item is scan-converted once per strip it meets), so [`write_png`]
+//! needs a strip's buffers and the drawing, never a buffer per pixel of the image. Strips do not
+//! change a pixel: an edge's crossing with a row is computed from the edge alone.
 
 use super::drawing::Drawing;
 use crate::scene::FaceId;
+use std::io::{self, Write};
+
+/// Pixels per strip: rows are rasterized in strips of about this many pixels, so the memory of
+/// a rasterization is a strip's, not the image's (at least one row per strip).
+const STRIP_PIXELS: usize = 1 << 18;
+
+/// Rows per strip for an image `width` pixels wide.
+pub fn strip_rows(width: u32) -> usize {
+    (STRIP_PIXELS / width.max(1) as usize).max(1)
+}
+
+/// Writes the drawing's [`colors`] as an 8-bit RGB PNG into `out`, strip by strip: memory per
+/// strip, whatever the image size.
+pub fn write_png(drawing: &Drawing, out: &mut dyn Write) -> io::Result<()> {
+    let mut px = Vec::new();
+    super::png::write_rgb_rows(out, drawing.width, drawing.height, |sink| {
+        color_strips(drawing, strip_rows(drawing.width), |_, strip| {
+            px.clear();
+            px.extend(strip.iter().map(|&c| crate::raster::shade::to_u8(c)));
+            sink(&px)
+        })
+    })
+}
 
 /// The face id of the topmost item covering each pixel centre (opaque or not), row-major, row 0
 /// at the top; `None` where no item covers.
 pub fn face_ids(drawing: &Drawing) -> Vec<Option<FaceId>> {
-    let (w, h) = (drawing.width as usize, drawing.height as usize);
-    let mut out = vec![None; w * h];
-    // Only the topmost item counts, so items are taken front to back and every pixel is written
-    // once: in each row, `next[i]` leads to the first pixel at or after i not yet written (a
-    // path-compressed skip list), so deep stacks of items cost per span, not per pixel.
-    let mut next: Vec<u32> = (0..h).flat_map(|_| 0..=w as u32).collect();
-    let mut spans = Spans::default();
-    for (k, it) in drawing.items.iter().enumerate().rev() {
-        let face = Some(it.face);
-        spans.for_each(drawing, k, |j, i0, i1| {
-            let row = &mut next[j * (w + 1)..(j + 1) * (w + 1)];
-            let mut i = find(row, i0);
-            while i < i1 {
-                out[j * w + i] = face;
-                row[i] = (i + 1) as u32;
-                i = find(row, i + 1);
-            }
-        });
-    }
+    let mut out = Vec::with_capacity(drawing.width as usize * drawing.height as usize);
+    let rows = strip_rows(drawing.width);
+    face_id_strips(drawing, rows, |_, strip| {
+        out.extend_from_slice(strip);
+        Ok::<(), std::convert::Infallible>(())
+    })
+    .unwrap_or_else(|never| match never {});
     out
+}
+
+/// [`face_ids`] by strips of `rows` rows: calls `strip(first_row, ids)` for each strip, top to
+/// bottom (`ids` row-major), stopping at the first error.
+pub fn face_id_strips<E>(
+    drawing: &Drawing,
+    rows: usize,
+    mut strip: impl FnMut(usize, &[Option<FaceId>]) -> Result<(), E>,
+) -> Result<(), E> {
+    let (w, rows) = (drawing.width as usize, rows.max(1));
+    let mut out = Vec::new();
+    let mut next = Vec::new();
+    let mut spans = Spans::default();
+    let mut bands = Bands::new(drawing, rows);
+    while let Some((r0, r1, items)) = bands.next_band() {
+        out.clear();
+        out.resize((r1 - r0) * w, None);
+        // Only the topmost item counts, so items are taken front to back and every pixel is
+        // written once: in each row, `next[i]` leads to the first pixel at or after i not yet
+        // written (a path-compressed skip list), so deep stacks of items cost per span, not per
+        // pixel.
+        next.clear();
+        next.extend((r0..r1).flat_map(|_| 0..=w as u32));
+        for &k in items.iter().rev() {
+            let face = Some(drawing.items[k as usize].face);
+            spans.for_each(drawing, k as usize, r0..r1, |j, i0, i1| {
+                let j = j - r0;
+                let row = &mut next[j * (w + 1)..(j + 1) * (w + 1)];
+                let mut i = find(row, i0);
+                while i < i1 {
+                    out[j * w + i] = face;
+                    row[i] = (i + 1) as u32;
+                    i = find(row, i + 1);
+                }
+            });
+        }
+        strip(r0, &out)?;
+    }
+    Ok(())
 }
 
 /// The first unwritten pixel at or after `i`, compressing the path behind it.
@@ -64,19 +119,131 @@ fn find(next: &mut [u32], i: usize) -> usize {
 /// The colour of each pixel centre, row-major: items blended back to front over the background
 /// (black when `None`) by `new = old·(1 - opacity) + color·opacity`.
 pub fn colors(drawing: &Drawing) -> Vec<[f64; 3]> {
-    let w = drawing.width as usize;
-    let bg = drawing.background.unwrap_or([0.0; 3]);
-    let mut out = vec![bg; w * drawing.height as usize];
-    let mut spans = Spans::default();
-    for (k, it) in drawing.items.iter().enumerate() {
-        let a = it.opacity;
-        spans.for_each(drawing, k, |j, i0, i1| {
-            for px in &mut out[j * w + i0..j * w + i1] {
-                *px = std::array::from_fn(|c| px[c] * (1.0 - a) + it.color[c] * a);
-            }
-        });
-    }
+    let mut out = Vec::with_capacity(drawing.width as usize * drawing.height as usize);
+    let rows = strip_rows(drawing.width);
+    color_strips(drawing, rows, |_, strip| {
+        out.extend_from_slice(strip);
+        Ok::<(), std::convert::Infallible>(())
+    })
+    .unwrap_or_else(|never| match never {});
     out
+}
+
+/// [`colors`] by strips of `rows` rows: calls `strip(first_row, colors)` for each strip, top to
+/// bottom (`colors` row-major), stopping at the first error.
+pub fn color_strips<E>(
+    drawing: &Drawing,
+    rows: usize,
+    mut strip: impl FnMut(usize, &[[f64; 3]]) -> Result<(), E>,
+) -> Result<(), E> {
+    let (w, rows) = (drawing.width as usize, rows.max(1));
+    let bg = drawing.background.unwrap_or([0.0; 3]);
+    let mut out = Vec::new();
+    let mut spans = Spans::default();
+    let mut bands = Bands::new(drawing, rows);
+    while let Some((r0, r1, items)) = bands.next_band() {
+        out.clear();
+        out.resize((r1 - r0) * w, bg);
+        for &k in items {
+            let it = &drawing.items[k as usize];
+            let a = it.opacity;
+            spans.for_each(drawing, k as usize, r0..r1, |j, i0, i1| {
+                let j = j - r0;
+                for px in &mut out[j * w + i0..j * w + i1] {
+                    *px = std::array::from_fn(|c| px[c] * (1.0 - a) + it.color[c] * a);
+                }
+            });
+        }
+        strip(r0, &out)?;
+    }
+    Ok(())
+}
+
+/// The image's rows cut into strips, each with the items whose rows meet it, in drawing order:
+/// an item is visited once per strip it spans, never for strips it misses.
+struct Bands {
+    height: usize,
+    rows: usize,
+    /// First row of the next strip.
+    r0: usize,
+    /// Per item: the rows its centres may cover, `first..end`.
+    span: Vec<(u32, u32)>,
+    /// Items by the strip of their first row, each list in drawing order.
+    starting: Vec<Vec<u32>>,
+    /// Items meeting the current strip, in drawing order.
+    active: Vec<u32>,
+    merged: Vec<u32>,
+}
+
+impl Bands {
+    fn new(drawing: &Drawing, rows: usize) -> Self {
+        let height = drawing.height as usize;
+        let strips = height.div_ceil(rows);
+        let mut starting = vec![Vec::new(); strips];
+        let span: Vec<(u32, u32)> = drawing
+            .items
+            .iter()
+            .map(|it| {
+                let ys = it.rings.iter().flatten().map(|p| p[1]);
+                let lo = ys.clone().fold(f64::INFINITY, f64::min);
+                let hi = ys.fold(f64::NEG_INFINITY, f64::max);
+                // The rows of `Spans::for_each`'s edges lie within these (same formula).
+                row_range(lo, hi, height)
+            })
+            .collect();
+        for (k, &(first, end)) in span.iter().enumerate() {
+            if first < end {
+                starting[first as usize / rows].push(k as u32);
+            }
+        }
+        Bands {
+            height,
+            rows,
+            r0: 0,
+            span,
+            starting,
+            active: Vec::new(),
+            merged: Vec::new(),
+        }
+    }
+
+    /// The next strip's rows `r0..r1` and the items meeting it, in drawing order.
+    fn next_band(&mut self) -> Option<(usize, usize, &[u32])> {
+        let r0 = self.r0;
+        if r0 >= self.height {
+            return None;
+        }
+        let r1 = (r0 + self.rows).min(self.height);
+        self.r0 = r1;
+        let span = &self.span;
+        self.active.retain(|&k| span[k as usize].1 as usize > r0);
+        // Merge the items starting here into the active ones, both in drawing order.
+        let new = std::mem::take(&mut self.starting[r0 / self.rows]);
+        self.merged.clear();
+        let (mut a, mut b) = (self.active.iter().peekable(), new.iter().peekable());
+        while let (Some(&&x), Some(&&y)) = (a.peek(), b.peek()) {
+            if x < y {
+                self.merged.push(x);
+                a.next();
+            } else {
+                self.merged.push(y);
+                b.next();
+            }
+        }
+        self.merged.extend(a);
+        self.merged.extend(b);
+        std::mem::swap(&mut self.active, &mut self.merged);
+        Some((r0, r1, &self.active))
+    }
+}
+
+/// The rows `first..end` (clamped to `0..height`) whose centre `j + 0.5` lies in `(lo, hi]`.
+fn row_range(lo: f64, hi: f64, height: usize) -> (u32, u32) {
+    // Centre j + 0.5 in (lo, hi]  <=>  lo - 0.5 < j <= hi - 0.5.
+    let h = height as f64;
+    let first = ((lo - 0.5).floor() + 1.0).clamp(0.0, h) as u32;
+    let end = ((hi - 0.5).floor() + 1.0).clamp(0.0, h) as u32;
+    (first, end)
 }
 
 /// One edge of an item, upper end first in pixel rows (y down: `y0 < y1`).
@@ -99,9 +266,16 @@ struct Spans {
 
 impl Spans {
     /// Calls `span(row, i0, i1)` for every run of pixels `i0..i1` (non-empty, inside the image)
-    /// whose centres item `k` covers, rows in order.
-    fn for_each(&mut self, drawing: &Drawing, k: usize, mut span: impl FnMut(usize, usize, usize)) {
-        let (w, h) = (drawing.width as f64, drawing.height as f64);
+    /// whose centres item `k` covers in rows `rows`, rows in order.
+    fn for_each(
+        &mut self,
+        drawing: &Drawing,
+        k: usize,
+        rows: std::ops::Range<usize>,
+        mut span: impl FnMut(usize, usize, usize),
+    ) {
+        let w = drawing.width as f64;
+        let (r0, r1) = (rows.start as u32, rows.end as u32);
         self.edges.clear();
         for ring in &drawing.items[k].rings {
             for (n, &a) in ring.iter().enumerate() {
@@ -110,9 +284,9 @@ impl Spans {
                     continue; // horizontal: crosses no row centre's half-open span
                 }
                 let (p, q) = if a[1] < b[1] { (a, b) } else { (b, a) };
-                // Centre j + 0.5 in (p.y, q.y]  <=>  p.y - 0.5 < j <= q.y - 0.5.
-                let first = ((p[1] - 0.5).floor() + 1.0).clamp(0.0, h) as u32;
-                let end = ((q[1] - 0.5).floor() + 1.0).clamp(0.0, h) as u32;
+                let (first, end) = row_range(p[1], q[1], drawing.height as usize);
+                // Only this strip's rows; the crossings do not depend on where rows start.
+                let (first, end) = (first.max(r0), end.min(r1));
                 if first < end {
                     self.edges.push(Edge {
                         x0: p[0],
