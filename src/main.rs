@@ -303,10 +303,17 @@ struct RenderArgs {
     #[arg(long, value_name = "FILE.png")]
     depth: Option<PathBuf>,
     /// Add a white directional light shining from direction x,y,z (world space) towards the
-    /// scene; repeat for more. The headlight stays unless --no-headlight.
+    /// scene; repeat for more. It adds to the camera's lights (the default key + fill, or
+    /// --headlight) unless --no-headlight.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     light: Vec<DVec3>,
-    /// No light along the view direction.
+    /// Light with one white light along the view direction instead of the default key light
+    /// (above left of the view) + fill light (right): the seed's look, every face seen head-on
+    /// equally bright.
+    #[arg(long, conflicts_with = "no_headlight")]
+    headlight: bool,
+    /// No light attached to the camera (neither the default key + fill nor --headlight): only
+    /// the --light lights and the ambient term.
     #[arg(long)]
     no_headlight: bool,
     /// Phong specular coefficient Ks (0 = matte); flat fills take each face's highlight at its
@@ -597,7 +604,11 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
     let t0 = Instant::now();
     let mut scene = load_scene(&a.input)?;
     let t_load = t0.elapsed();
-    scene.lights.headlight = !a.no_headlight;
+    scene.lights.camera = match (a.headlight, a.no_headlight) {
+        (true, _) => sightline::scene::CameraLights::Headlight,
+        (_, true) => sightline::scene::CameraLights::None,
+        _ => sightline::scene::CameraLights::KeyFill,
+    };
     scene.lights.specular = a.specular;
     scene.lights.shininess = a.shininess;
     for l in &a.light {
