@@ -473,6 +473,33 @@ fn progress_bar(len: u64, what: &str) -> ProgressBar {
     bar
 }
 
+/// One labelled bar per stage of the library's progress reports (`sightline::progress`), cleared
+/// when the stage reaches its total.
+#[derive(Default)]
+struct StageBars {
+    bar: std::cell::RefCell<Option<(&'static str, ProgressBar)>>,
+}
+
+impl StageBars {
+    fn report(&self, stage: &'static str, done: u64, total: u64) {
+        let mut current = self.bar.borrow_mut();
+        if current.as_ref().is_none_or(|(s, _)| *s != stage) {
+            if let Some((_, old)) = current.take() {
+                old.finish_and_clear();
+            }
+            *current = Some((stage, progress_bar(total, stage)));
+        }
+        if let Some((_, bar)) = current.as_ref() {
+            bar.set_length(total);
+            bar.set_position(done);
+            if done >= total {
+                bar.finish_and_clear();
+                *current = None;
+            }
+        }
+    }
+}
+
 fn load_scene(input: &InputArgs) -> sightline::Result<Scene> {
     let spinner = if std::io::stderr().is_terminal() {
         let s = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
@@ -557,10 +584,13 @@ fn run_method(
     fill: Fill,
     merge_surfaces: bool,
 ) -> sightline::visibility::VisibilityResult {
-    use sightline::visibility::VisibilityMethod;
     if method == Method::Bsp {
         let m = sightline::visibility::BspMethod { merge_surfaces };
-        return m.run(scene, &prepared.screen, camera, fill);
+        let bars = StageBars::default();
+        let report = |stage: &'static str, done, total| bars.report(stage, done, total);
+        let report: Option<sightline::progress::Report> =
+            std::io::stderr().is_terminal().then_some(&report);
+        return m.run_with_progress(scene, &prepared.screen, camera, fill, report);
     }
     let m = sightline::visibility::method_by_name(method.name())
         .expect("every object-space CLI method is registered");

@@ -608,3 +608,31 @@ fn the_first_command_shows_three_shades_of_the_cube() {
         }
     }
 }
+
+/// Point 9 of issue 8: progress bars ("visible set", "painter order", "rendering") are drawn
+/// only when stderr is a terminal; piped, a render's stderr carries nothing.
+#[test]
+fn progress_is_silent_when_stderr_is_not_a_terminal() {
+    let dir = tempfile::tempdir().unwrap();
+    for (input, method, out) in [
+        ("fixtures/interpenetrating.obj", "bsp", "x.svg"),
+        ("fixtures/cube.obj", "bsp", "x.svg"),
+        ("fixtures/cube_ascii.stl", "zbuffer", "x.png"),
+    ] {
+        let out = dir.path().join(out);
+        let o = sightline(&[
+            "render",
+            input,
+            "--method",
+            method,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(
+            o.stderr.is_empty(),
+            "{input} {method}: {:?}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+}

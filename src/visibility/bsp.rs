@@ -31,6 +31,7 @@ use crate::exact::predicates::{Line, line_side};
 use crate::exact::{GridPoint, Plane, Samples};
 use crate::output::drawing::{DrawItem, Drawing};
 use crate::pipeline::Fill;
+use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::Scene;
 use std::cmp::Ordering;
@@ -219,7 +220,16 @@ fn partition(splitter: &Splitter, list: Vec<Piece>) -> (Vec<Piece>, Vec<Piece>, 
 impl Bsp {
     /// Builds the 3D BSP of a screen scene.
     pub fn build(screen: &ScreenScene) -> Bsp {
+        Self::build_with_progress(screen, None)
+    }
+
+    /// [`Self::build`], reporting stage "painter order": fragments placed in nodes of the
+    /// fragments known so far (the total grows as pieces are split).
+    pub fn build_with_progress(screen: &ScreenScene, report: Option<Report>) -> Bsp {
         let pieces = initial_pieces(screen);
+        let mut ticker = Ticker::new(report, "painter order", pieces.len() as u64);
+        // Pieces waiting in `work`: fragments placed + pending is every fragment known so far.
+        let mut pending = pieces.len();
         let mut stats = BspStats {
             polygons: screen.polys.len(),
             pieces: pieces.len(),
@@ -227,6 +237,7 @@ impl Bsp {
         };
         let mut nodes: Vec<Node> = Vec::new();
         if pieces.is_empty() {
+            ticker.finish();
             return Bsp { nodes, stats };
         }
         enum Link {
@@ -237,6 +248,7 @@ impl Bsp {
         let mut work: Vec<(Link, usize, Vec<Piece>)> = vec![(Link::Root, 1, pieces)];
         while let Some((link, depth, list)) = work.pop() {
             let n = list.len();
+            pending -= n;
             let boxes: Vec<[f64; 4]> = if n == 1 {
                 Vec::new()
             } else {
@@ -282,13 +294,17 @@ impl Bsp {
                 Link::Neg(parent) => nodes[parent as usize].neg = Some(index),
                 Link::Pos(parent) => nodes[parent as usize].pos = Some(index),
             }
+            pending += neg.len() + pos.len();
             if !neg.is_empty() {
                 work.push((Link::Neg(index), depth + 1, std::mem::take(&mut neg)));
             }
             if !pos.is_empty() {
                 work.push((Link::Pos(index), depth + 1, std::mem::take(&mut pos)));
             }
+            let placed = stats.fragments as u64;
+            ticker.tick_of(placed, placed + pending as u64);
         }
+        ticker.finish();
         stats.nodes = nodes.len();
         Bsp { nodes, stats }
     }
@@ -348,6 +364,15 @@ impl Bsp {
 /// is built, so interpenetrating soups cost what their visible arrangement needs. The nearest
 /// first order only saves work (most pieces then meet only nearer ones); it decides nothing.
 pub fn visible_set(screen: &ScreenScene) -> (VisibleSet, CoverageStats) {
+    visible_set_with_progress(screen, None)
+}
+
+/// [`visible_set`], reporting stage "visible set": pieces inserted into the coverage map of
+/// all the pieces.
+pub fn visible_set_with_progress(
+    screen: &ScreenScene,
+    report: Option<Report>,
+) -> (VisibleSet, CoverageStats) {
     let mut pieces = initial_pieces(screen);
     let near: Vec<i32> = screen
         .polys
@@ -356,9 +381,12 @@ pub fn visible_set(screen: &ScreenScene) -> (VisibleSet, CoverageStats) {
         .collect();
     pieces.sort_by_key(|p| (near[p.poly as usize], tie_key(screen, p)));
     let mut coverage = Coverage::new(screen, &pieces);
-    for p in pieces {
+    let mut ticker = Ticker::new(report, "visible set", pieces.len() as u64);
+    for (i, p) in pieces.into_iter().enumerate() {
         coverage.insert(p);
+        ticker.tick(i as u64 + 1);
     }
+    ticker.finish();
     let stats = coverage.stats.clone();
     (
         VisibleSet {
@@ -466,6 +494,21 @@ impl super::VisibilityMethod for BspMethod {
         camera: &Camera,
         fill: Fill,
     ) -> super::VisibilityResult {
+        self.run_with_progress(scene, screen, camera, fill, None)
+    }
+}
+
+impl BspMethod {
+    /// [`super::VisibilityMethod::run`], reporting the progress of its long stages: "visible
+    /// set" (opaque scenes) or "painter order" (translucent ones), see [`crate::progress`].
+    pub fn run_with_progress(
+        &self,
+        scene: &Scene,
+        screen: &ScreenScene,
+        camera: &Camera,
+        fill: Fill,
+        report: Option<Report>,
+    ) -> super::VisibilityResult {
         let fallbacks = crate::exact::predicates::fallback_count();
         let translucent = fill == Fill::Shade
             && screen.polys.iter().any(|p| {
@@ -480,7 +523,7 @@ impl super::VisibilityMethod for BspMethod {
         let t = Instant::now();
         let pieces = if translucent {
             // Blending needs every fragment in exact depth order: the BSP gives it.
-            let bsp = Bsp::build(screen);
+            let bsp = Bsp::build_with_progress(screen, report);
             let st = &bsp.stats;
             put("pieces", st.pieces.into());
             put("fragments", st.fragments.into());
@@ -488,7 +531,7 @@ impl super::VisibilityMethod for BspMethod {
             put("bsp_depth", st.depth.into());
             bsp.back_to_front()
         } else {
-            let (visible, cs) = visible_set(screen);
+            let (visible, cs) = visible_set_with_progress(screen, report);
             put("pieces", cs.inserted.into());
             put("visible_pieces", visible.pieces.len().into());
             put("replaced", cs.replaced.into());
