@@ -46,6 +46,7 @@ Examples:
   sightline render mesh.ply --eye -1,2,3 --target 0,0,0 --fill id -o ids.png
   sightline render bunny.obj --cam bunny.cam -o - > bunny.png
   sightline render part.obj --method bsp --stroke --light=-1,2,1 --specular 0.3 -o part.svg
+  sightline render part.obj --headlight -o part.png     # the seed's headlight, not key + fill
   sightline render bunny.obj --cam bunny.cam --shading phong --specular 0.3 -o bunny.png
   sightline render glass.x3d --method abuffer -o glass.png
   sightline info mesh.obj --view iso";

@@ -465,3 +465,22 @@ fn camera_lights_follow_the_camera() {
         assert_eq!(spec, [0.0; 3]);
     }
 }
+
+/// The default lights never saturate a white matte face, whatever its direction: at most what
+/// the headlight gives a face seen head-on (Ka + Kd = 1).
+#[test]
+fn default_lights_do_not_blow_out_a_white_face() {
+    let cam = persp_camera(DVec3::new(3.0, 2.5, 4.0), 32);
+    let lighting = Lighting::of_scene(&Scene::default(), &cam);
+    let n = 20_000;
+    let mut most: f64 = 0.0;
+    for i in 0..n {
+        // Fibonacci sphere: normals spread evenly over every direction.
+        let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+        let a = i as f64 * std::f64::consts::PI * (3.0 - 5f64.sqrt());
+        let r = (1.0 - z * z).sqrt();
+        let normal = DVec3::new(r * a.cos(), r * a.sin(), z);
+        most = most.max(lighting.terms(normal, DVec3::ZERO, cam.eye, false).0[0]);
+    }
+    assert!(most <= 1.0 && most > 0.99, "{most}");
+}
