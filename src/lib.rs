@@ -13,6 +13,7 @@ pub mod camera;
 pub mod exact;
 pub mod output;
 pub mod pipeline;
+pub mod progress;
 pub mod project;
 pub mod raster;
 pub mod visibility;

@@ -49,6 +49,7 @@ Examples:
   sightline render mesh.ply --eye -1,2,3 --target 0,0,0 --fill id -o ids.png
   sightline render bunny.obj --cam bunny.cam -o - > bunny.png
   sightline render part.obj --stroke --light -1,2,1 --specular 0.3 -o part.svg
+  sightline render part.obj --headlight -o part.png     # the seed's headlight, not key + fill
   sightline render bunny.obj --cam bunny.cam --shading phong --specular 0.3 -o bunny.png
   sightline render glass.x3d --method abuffer -o glass.png
   sightline info mesh.obj --view iso";
@@ -316,10 +317,17 @@ struct RenderArgs {
     #[arg(long, value_name = "FILE.png")]
     depth: Option<PathBuf>,
     /// Add a white directional light shining from direction x,y,z (world space) towards the
-    /// scene; repeat for more. The headlight stays unless --no-headlight.
+    /// scene; repeat for more. It adds to the camera's lights (the default key + fill, or
+    /// --headlight) unless --no-headlight.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
     light: Vec<DVec3>,
-    /// No light along the view direction.
+    /// Light with one white light along the view direction instead of the default key light
+    /// (above left of the view) + fill light (right): the seed's look, every face seen head-on
+    /// equally bright.
+    #[arg(long, conflicts_with = "no_headlight")]
+    headlight: bool,
+    /// No light attached to the camera (neither the default key + fill nor --headlight): only
+    /// the --light lights and the ambient term.
     #[arg(long)]
     no_headlight: bool,
     /// Phong specular coefficient Ks (0 = matte); flat fills take each face's highlight at its
@@ -501,6 +509,33 @@ fn progress_bar(len: u64, what: &str) -> ProgressBar {
     bar
 }
 
+/// One labelled bar per stage of the library's progress reports (`sightline::progress`), cleared
+/// when the stage reaches its total.
+#[derive(Default)]
+struct StageBars {
+    bar: std::cell::RefCell<Option<(&'static str, ProgressBar)>>,
+}
+
+impl StageBars {
+    fn report(&self, stage: &'static str, done: u64, total: u64) {
+        let mut current = self.bar.borrow_mut();
+        if current.as_ref().is_none_or(|(s, _)| *s != stage) {
+            if let Some((_, old)) = current.take() {
+                old.finish_and_clear();
+            }
+            *current = Some((stage, progress_bar(total, stage)));
+        }
+        if let Some((_, bar)) = current.as_ref() {
+            bar.set_length(total);
+            bar.set_position(done);
+            if done >= total {
+                bar.finish_and_clear();
+                *current = None;
+            }
+        }
+    }
+}
+
 fn load_scene(input: &InputArgs) -> sightline::Result<Scene> {
     let spinner = if std::io::stderr().is_terminal() {
         let s = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
@@ -679,14 +714,17 @@ fn run_method(
     fill: Fill,
     merge_surfaces: bool,
 ) -> sightline::visibility::VisibilityResult {
-    use sightline::visibility::VisibilityMethod;
     if method == Method::Bsp {
         // Seams are for vector drawings, which the pictures (merged surfaces) are.
         let m = sightline::visibility::BspMethod {
             merge_surfaces,
             seams: merge_surfaces,
         };
-        return m.run(scene, &prepared.screen, camera, fill);
+        let bars = StageBars::default();
+        let report = |stage: &'static str, done, total| bars.report(stage, done, total);
+        let report: Option<sightline::progress::Report> =
+            std::io::stderr().is_terminal().then_some(&report);
+        return m.run_with_progress(scene, &prepared.screen, camera, fill, report);
     }
     let m = sightline::visibility::method_by_name(method.name())
         .expect("every object-space CLI method is registered");
@@ -740,7 +778,11 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
     let t0 = Instant::now();
     let mut scene = load_scene(&a.input)?;
     let t_load = t0.elapsed();
-    scene.lights.headlight = !a.no_headlight;
+    scene.lights.camera = match (a.headlight, a.no_headlight) {
+        (true, _) => sightline::scene::CameraLights::Headlight,
+        (_, true) => sightline::scene::CameraLights::None,
+        _ => sightline::scene::CameraLights::KeyFill,
+    };
     scene.lights.specular = a.specular;
     scene.lights.shininess = a.shininess;
     for l in &a.light {

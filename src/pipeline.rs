@@ -11,7 +11,7 @@ use crate::scene::analysis::{SceneAnalysis, analyse};
 /// How pixels are coloured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum Fill {
-    /// Flat shading with a headlight.
+    /// Flat shading under the scene's lights (by default the camera's key and fill lights).
     #[default]
     Shade,
     /// Face id + 1 as 24-bit RGB on black: the contract used to compare methods.

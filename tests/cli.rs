@@ -482,9 +482,15 @@ fn lights_and_specular_change_the_fills() {
     // The headlight's mirror direction is the view: a face seen head-on takes the highlight (the
     // iso view's faces, 55° off, reflect it away).
     assert_ne!(
-        fills(&["--view", "front"]),
-        fills(&["--view", "front", "--specular", "0.5"])
+        fills(&["--view", "front", "--headlight"]),
+        fills(&["--view", "front", "--headlight", "--specular", "0.5"])
     );
+    // The default key and fill light the two red faces (top and left) differently; the
+    // headlight sees them at the same angle.
+    let head = fills(&["--headlight"]);
+    assert_ne!(plain[0], plain[1], "the cube's two red faces");
+    assert_eq!(head[0], head[1], "the cube's two red faces");
+    assert_ne!(head, plain);
     // Without any light only the ambient term is left: darker in every channel, and the same
     // on faces of one material whatever their direction (the two red faces).
     let dark = fills(&["--no-headlight"]);
@@ -493,19 +499,19 @@ fn lights_and_specular_change_the_fills() {
             .map(|k| u8::from_str_radix(&h[1 + 2 * k..3 + 2 * k], 16).unwrap())
             .collect::<Vec<_>>()
     };
-    for (d, p) in dark.iter().zip(&plain) {
+    for (d, p) in dark.iter().zip(plain.iter().chain(&head)) {
         assert!(
             rgb(d).iter().zip(rgb(p)).all(|(a, b)| *a <= b),
             "{d} vs {p}"
         );
     }
     assert_ne!(dark, plain);
-    assert_eq!(plain[0], plain[1], "the cube's two red faces");
     assert_eq!(dark[0], dark[1]);
     for bad in [
         &["--specular", "-1"][..],
         &["--light", "0,0,0"],
         &["--shading", "phong"],
+        &["--headlight", "--no-headlight"],
     ] {
         let mut args = vec![
             "render",
@@ -859,6 +865,31 @@ fn a_camera_that_sees_nothing_writes_empty_output_and_warns() {
                 let v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
                 assert_eq!(v["faces"], serde_json::json!([]));
             }
+
+/// Point 12 of issue 8: the README's first command shows the cube's form, its three visible
+/// faces in three clearly different colours (the top and the left one are both red), as does
+/// the cube with one material.
+#[test]
+fn the_first_command_shows_three_shades_of_the_cube() {
+    let dir = tempfile::tempdir().unwrap();
+    for input in ["fixtures/cube.obj", "fixtures/cube_ascii.stl"] {
+        let out = dir.path().join("cube.png");
+        let o = sightline(&["render", input, "-o", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let img = decode(&std::fs::read(&out).unwrap()).to_rgb8();
+        let mut count = std::collections::HashMap::<[u8; 3], usize>::new();
+        for p in img.pixels().filter(|p| p.0 != [255; 3]) {
+            *count.entry(p.0).or_default() += 1;
+        }
+        let mut by_count: Vec<([u8; 3], usize)> = count.into_iter().collect();
+        by_count.sort_by_key(|&(c, n)| (std::cmp::Reverse(n), c));
+        // Each visible face covers more than an eighth of the image.
+        let faces: Vec<[u8; 3]> = by_count[..3].iter().map(|&(c, _)| c).collect();
+        assert!(by_count[2].1 > 1024 * 1024 / 8, "{input}: {by_count:?}");
+        for i in 0..3 {
+            let (a, b) = (faces[i], faces[(i + 1) % 3]);
+            let d: i32 = (0..3).map(|k| (a[k] as i32 - b[k] as i32).abs()).sum();
+            assert!(d > 20, "{input}: {faces:?}");
         }
     }
 }
@@ -1058,4 +1089,31 @@ fn compare_diff_marks_mismatched_pixels_in_red() {
     };
     assert_eq!(red_pixels("fixtures/cyclic_bars.obj", "bsp"), 0);
     assert!(red_pixels("fixtures/cyclic_bars.obj", "painter") > 0);
+
+/// Point 9 of issue 8: progress bars ("visible set", "painter order", "rendering") are drawn
+/// only when stderr is a terminal; piped, a render's stderr carries nothing.
+#[test]
+fn progress_is_silent_when_stderr_is_not_a_terminal() {
+    let dir = tempfile::tempdir().unwrap();
+    for (input, method, out) in [
+        ("fixtures/interpenetrating.obj", "bsp", "x.svg"),
+        ("fixtures/cube.obj", "bsp", "x.svg"),
+        ("fixtures/cube_ascii.stl", "zbuffer", "x.png"),
+    ] {
+        let out = dir.path().join(out);
+        let o = sightline(&[
+            "render",
+            input,
+            "--method",
+            method,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(
+            o.stderr.is_empty(),
+            "{input} {method}: {:?}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
 }

@@ -9,10 +9,11 @@ use sightline::raster::interpolate::{
     hit_face, perspective_correct, perspective_depth, perspective_weights, screen_weights,
 };
 use sightline::raster::lighting::{
-    Light, Lighting, Shading, Textures, shade_zbuffer, vertex_normals,
+    FILL, KEY, Light, Lighting, Shading, Textures, shade_zbuffer, vertex_normals,
 };
-use sightline::raster::shade::flat_color;
+use sightline::raster::shade::{flat_color, to_u8};
 use sightline::raster::texture::{Mipmap, level_of_detail};
+use sightline::scene::CameraLights;
 use sightline::scene::primitives::sphere_scene;
 use sightline::{Scene, load};
 use std::path::Path;
@@ -157,7 +158,7 @@ fn seed_004_lighting_model() {
         diffuse: 0.6,
         specular: 0.5,
         shininess: 10.0,
-        headlight: None,
+        camera_lights: [None, None],
         view: None,
         lights: vec![Light::Directional {
             // cos θ = 0.5 (60° from the normal), travelling towards -x, -z.
@@ -228,10 +229,10 @@ fn flat_through_lighting_is_the_flat_renderer() {
         &prep.screen,
         &zb,
         &cam,
-        // Flat and matte, as `flat_color` under the default lights.
+        // Flat and matte, as `flat_color` under the scene's (default) lights.
         &Lighting {
             specular: 0.0,
-            ..Lighting::headlight(&cam)
+            ..Lighting::of_scene(&scene, &cam)
         },
         Shading::Flat,
         &Textures::load(&scene),
@@ -353,7 +354,7 @@ fn render_checker(size: u32) -> Vec<[f64; 3]> {
         &prep.screen,
         &zb,
         &cam,
-        // Flat and matte, as `flat_color` under the default lights.
+        // Flat and matte, under the seed's headlight.
         &Lighting {
             specular: 0.0,
             ..Lighting::headlight(&cam)
@@ -389,4 +390,97 @@ fn textured_quad_minified_shows_the_grey_of_level_one() {
             assert!((c - 0.5).abs() < 1e-9, "pixel {k}: {got:?}");
         }
     }
+}
+
+/// The flat colours (8-bit) of the cube's faces turned towards +x, +y and +z, in the iso view
+/// fitted as the CLI fits it.
+fn iso_cube_face_colours(scene: &Scene) -> Vec<[u8; 3]> {
+    let spec = sightline::camera::CameraSpec {
+        view: Some(sightline::camera::NamedView::Iso),
+        ..Default::default()
+    };
+    let cam = spec.resolve(scene.bounds().unwrap(), None).unwrap();
+    [DVec3::X, DVec3::Y, DVec3::Z]
+        .iter()
+        .map(|axis| {
+            let face = (0..scene.faces.len())
+                .find(|&f| scene.face_normal(&scene.faces[f]).normalize().dot(*axis) > 0.99)
+                .expect("the cube has a face on every side");
+            to_u8(flat_color(scene, face, &cam))
+        })
+        .collect()
+}
+
+fn rgb_sum_difference(a: [u8; 3], b: [u8; 3]) -> i32 {
+    (0..3).map(|k| (a[k] as i32 - b[k] as i32).abs()).sum()
+}
+
+/// Point 12 of issue 8: by default the three faces of the iso cube (one material) get three
+/// clearly different shades, brightest on top; the headlight, kept for `--headlight`, lights
+/// them alike.
+#[test]
+fn default_lights_give_the_iso_cube_three_shades() {
+    let mut scene = fixture("cube_ascii.stl");
+    let [x, y, z] = iso_cube_face_colours(&scene)[..] else {
+        unreachable!()
+    };
+    for (a, b) in [(x, y), (y, z), (z, x)] {
+        assert!(rgb_sum_difference(a, b) > 20, "{x:?} {y:?} {z:?}");
+    }
+    assert!(
+        y[0] > z[0] && z[0] > x[0],
+        "top, left, right: {y:?} {z:?} {x:?}"
+    );
+    // Nothing blown out or black: the darkest face keeps ambient + fill.
+    assert!(y[0] < 250 && x[0] > 60, "{x:?} {y:?}");
+    scene.lights.camera = CameraLights::Headlight;
+    let head = iso_cube_face_colours(&scene);
+    assert!(head.iter().all(|c| *c == head[0]), "{head:?}");
+}
+
+/// The default key and fill lights are fixed to the camera: a face turned towards the key light,
+/// as the camera sees it, gets the same light from every camera position.
+#[test]
+fn camera_lights_follow_the_camera() {
+    let scene = Scene::default();
+    let dot = (0..3)
+        .map(|k| KEY.towards[k] * FILL.towards[k])
+        .sum::<f64>();
+    let want = 0.2 + 0.8 * (KEY.intensity + FILL.intensity * dot.max(0.0));
+    for eye in [
+        DVec3::new(0.0, 0.0, 5.0),
+        DVec3::new(3.0, 2.5, 4.0),
+        DVec3::new(-7.0, -1.0, 0.5),
+        DVec3::new(0.1, -6.0, 0.2),
+    ] {
+        let cam = persp_camera(eye, 32);
+        let lighting = Lighting::of_scene(&scene, &cam);
+        let forward = cam.forward();
+        let right = forward.cross(cam.up).normalize();
+        let up = right.cross(forward);
+        let [kx, ky, kz] = KEY.towards;
+        let n = right * kx + up * ky - forward * kz;
+        let (lit, spec) = lighting.terms(n, DVec3::ZERO, eye, false);
+        assert!((lit[0] - want).abs() < 1e-12, "{eye}: {lit:?} vs {want}");
+        assert_eq!(spec, [0.0; 3]);
+    }
+}
+
+/// The default lights never saturate a white matte face, whatever its direction: at most what
+/// the headlight gives a face seen head-on (Ka + Kd = 1).
+#[test]
+fn default_lights_do_not_blow_out_a_white_face() {
+    let cam = persp_camera(DVec3::new(3.0, 2.5, 4.0), 32);
+    let lighting = Lighting::of_scene(&Scene::default(), &cam);
+    let n = 20_000;
+    let mut most: f64 = 0.0;
+    for i in 0..n {
+        // Fibonacci sphere: normals spread evenly over every direction.
+        let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+        let a = i as f64 * std::f64::consts::PI * (3.0 - 5f64.sqrt());
+        let r = (1.0 - z * z).sqrt();
+        let normal = DVec3::new(r * a.cos(), r * a.sin(), z);
+        most = most.max(lighting.terms(normal, DVec3::ZERO, cam.eye, false).0[0]);
+    }
+    assert!(most <= 1.0 && most > 0.99, "{most}");
 }

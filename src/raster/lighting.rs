@@ -6,11 +6,16 @@
 //! surfaces are lit on the side that is seen, as [`super::shade`] does), R is L mirrored about N,
 //! S points to the eye. Lights add linearly (seed 004).
 //!
+//! The lights ([`Lighting::of_scene`]): the camera's (by default a key light from above left
+//! and a weak fill from the right, [`KEY`] and [`FILL`], given in the camera's frame so that
+//! every view shows the form; or the seed's headlight; or none, see [`CameraLights`]), then the
+//! scene's lights fixed in the world.
+//!
 //! Shading (the same pixel always gets the same colour whatever the order faces are drawn in):
 //! - **Flat**: the model at the face's centroid with the face normal: one colour per face (times
 //!   the texture); ambient + diffuse only (the seed's "tonalização constante") unless Ks > 0,
 //!   then the centroid's highlight too (SVG fills use the same, [`Lighting::flat_color`]). With
-//!   the default headlight and Ks = 0 it equals [`super::shade::flat_color`].
+//!   the scene's lights and Ks = 0 it equals [`super::shade::flat_color`].
 //! - **Gouraud**: ambient + diffuse + specular evaluated at the corners with the vertex normals,
 //!   then the light terms interpolated perspective-correctly to the pixel.
 //! - **Phong**: the vertex normals interpolated (perspective-correctly) and renormalized, the
@@ -34,7 +39,35 @@ use std::collections::HashMap;
 /// Faces meeting at a position are smoothed together when their normals differ by at most this.
 pub const CREASE_DEGREES: f64 = 60.0;
 
-pub use crate::scene::Light;
+pub use crate::scene::{CameraLights, Light};
+
+/// A light attached to the camera: the direction towards it in the camera's frame (right, up,
+/// towards the viewer; unit length) and its white intensity.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraLight {
+    pub towards: [f64; 3],
+    pub intensity: f64,
+}
+
+/// The default key light: from above left of the view, at azimuth 320° (40° left of straight
+/// up) and 35° above the image plane. Close to matplotlib's `LightSource(azdeg=315,
+/// altdeg=45)`, a little lower, so that surfaces facing the viewer are set apart from those
+/// turned up (the iso cube's top, left and right faces get three shades, brightest on top).
+pub const KEY: CameraLight = CameraLight {
+    towards: [-0.5265407845183635, 0.6275068715971329, 0.573576436351046],
+    intensity: 0.93,
+};
+
+/// The default fill light: weak, from the right and a little below the view (azimuth 99°,
+/// altitude 53°), so that faces the key does not reach are still read (with the ambient term)
+/// instead of going flat dark.
+///
+/// With Ka = 0.2 and Kd = 0.8, a face turned to both lights gets at most about 1, what the
+/// headlight gives a face seen head-on: a white face does not saturate.
+pub const FILL: CameraLight = CameraLight {
+    towards: [0.6, -0.1, 0.7937253933193772],
+    intensity: 0.3,
+};
 
 /// The coefficients and the lights.
 #[derive(Clone, Debug, PartialEq)]
@@ -47,9 +80,9 @@ pub struct Lighting {
     pub specular: f64,
     /// Phong exponent n.
     pub shininess: f64,
-    /// A white directional light travelling this way (the camera's view direction for a
-    /// headlight), besides `lights`: kept apart so the common case needs no allocation.
-    pub headlight: Option<DVec3>,
+    /// The camera's lights in world space (the headlight, or the key and the fill), besides
+    /// `lights`: kept apart so the common case needs no allocation.
+    pub camera_lights: [Option<Light>; 2],
     pub lights: Vec<Light>,
     /// The unit direction towards the viewer when it is the same everywhere (orthographic
     /// cameras); `None`: from each point to the eye (perspective).
@@ -65,13 +98,13 @@ impl Lighting {
             diffuse: super::shade::DIFFUSE,
             specular: 0.3,
             shininess: 32.0,
-            headlight: Some(camera.forward()),
+            camera_lights: camera_lights(CameraLights::Headlight, camera),
             lights: Vec::new(),
             view: view_of(camera),
         }
     }
 
-    /// The scene's lights (`scene.lights`) as seen by `camera`: the headlight if on, then the
+    /// The scene's lights (`scene.lights`) as seen by `camera`: the camera's lights, then the
     /// others, Ka and Kd of the flat renderer, the scene's Ks and n.
     pub fn of_scene(scene: &Scene, camera: &Camera) -> Lighting {
         let l = &scene.lights;
@@ -80,7 +113,7 @@ impl Lighting {
             diffuse: super::shade::DIFFUSE,
             specular: l.specular,
             shininess: l.shininess,
-            headlight: l.headlight.then(|| camera.forward()),
+            camera_lights: camera_lights(l.camera, camera),
             lights: l.lights.clone(),
             view: view_of(camera),
         }
@@ -139,11 +172,7 @@ impl Lighting {
         }
         let mut lit = [self.ambient; 3];
         let mut spec = [0.0; 3];
-        let head = self.headlight.map(|direction| Light::Directional {
-            direction,
-            intensity: [1.0; 3],
-        });
-        for light in head.iter().chain(&self.lights) {
+        for light in self.camera_lights.iter().flatten().chain(&self.lights) {
             let (l, i) = match *light {
                 Light::Directional {
                     direction,
@@ -185,6 +214,33 @@ impl Lighting {
     ) -> [f64; 3] {
         let (lit, spec) = self.terms(normal, point, eye, specular);
         combine(base, emissive, lit, spec)
+    }
+}
+
+/// The camera's lights as world-space directional lights.
+pub fn camera_lights(which: CameraLights, camera: &Camera) -> [Option<Light>; 2] {
+    let white = |direction: DVec3, i: f64| Light::Directional {
+        direction,
+        intensity: [i; 3],
+    };
+    let forward = camera.forward();
+    match which {
+        CameraLights::None => [None, None],
+        CameraLights::Headlight => [Some(white(forward, 1.0)), None],
+        CameraLights::KeyFill => {
+            // The camera's frame: right, up (as seen on the image) and back towards the viewer.
+            let right = forward
+                .cross(camera.up)
+                .try_normalize()
+                .unwrap_or_else(|| forward.any_orthonormal_vector());
+            let up = right.cross(forward);
+            let world = |l: &CameraLight| {
+                let [x, y, z] = l.towards;
+                // A light travels away from where it is.
+                white(-(right * x + up * y - forward * z), l.intensity)
+            };
+            [Some(world(&KEY)), Some(world(&FILL))]
+        }
     }
 }
 

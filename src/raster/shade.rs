@@ -1,8 +1,8 @@
 //! Flat fills and id colours. A face's flat colour is the seed 004 model ([`super::lighting`])
 //! at its centroid with its normal turned towards the viewer (open and two-sided surfaces are
-//! lit on the side that is seen). With the default lights (the headlight, no specular) that is
-//! `emissive + diffuse·(Ka + Kd·max(N·L, 0))`, L the view direction: coplanar faces get exactly
-//! the same colour whatever their size or place.
+//! lit on the side that is seen). With directional lights only and no specular (the default:
+//! the camera's key and fill) that is `emissive + diffuse·(Ka + Σ Kd·I·max(N·L, 0))`: coplanar
+//! faces get exactly the same colour whatever their size or place.
 
 use crate::camera::Camera;
 use crate::pipeline::Fill;
@@ -10,7 +10,7 @@ use crate::scene::Scene;
 
 /// Ambient coefficient.
 pub const AMBIENT: f64 = 0.2;
-/// Diffuse (Lambert) coefficient of the headlight.
+/// Diffuse (Lambert) coefficient Kd of every light.
 pub const DIFFUSE: f64 = 0.8;
 
 /// Flat colour (linear RGB, clamped to [0,1]) of `scene.faces[face]` seen by `camera`, under

@@ -147,12 +147,27 @@ pub enum Light {
     },
 }
 
+/// The lights that move with the camera (defined in its frame, so every view is lit alike).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CameraLights {
+    /// A key light from above and to the left of the view and a weak fill from the right
+    /// (`raster::lighting::KEY` and `FILL`): faces of different directions get different shades,
+    /// as in a CAD viewer's or matplotlib's default (`LightSource(azdeg=315, altdeg=45)`).
+    #[default]
+    KeyFill,
+    /// One white light along the view direction (seed 004's and X3D's headlight): every face
+    /// seen head-on is equally bright, whatever its direction.
+    Headlight,
+    /// None: only [`SceneLights::lights`] and the ambient term.
+    None,
+}
+
 /// How a scene is lit: the seed 004 model's lights and its specular term.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneLights {
-    /// A white directional light along the view direction, whatever the camera.
-    pub headlight: bool,
-    /// Lights besides the headlight.
+    /// The lights attached to the camera.
+    pub camera: CameraLights,
+    /// Lights fixed in the world, besides the camera's.
     pub lights: Vec<Light>,
     /// Phong specular coefficient Ks (0: none, the default for flat fills).
     pub specular: f64,
@@ -163,7 +178,7 @@ pub struct SceneLights {
 impl Default for SceneLights {
     fn default() -> Self {
         SceneLights {
-            headlight: true,
+            camera: CameraLights::KeyFill,
             lights: Vec::new(),
             specular: 0.0,
             shininess: 32.0,

@@ -32,6 +32,7 @@ use crate::exact::predicates::{Line, line_side};
 use crate::exact::{GridPoint, Plane, Samples};
 use crate::output::drawing::{DrawItem, Drawing, SeamStroke, Seams};
 use crate::pipeline::Fill;
+use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::Scene;
 use std::cmp::Ordering;
@@ -220,11 +221,21 @@ fn partition(splitter: &Splitter, list: Vec<Piece>) -> (Vec<Piece>, Vec<Piece>, 
 impl Bsp {
     /// Builds the 3D BSP of a screen scene.
     pub fn build(screen: &ScreenScene) -> Bsp {
-        Bsp::build_from(screen, initial_pieces(screen))
+        Self::build_with_progress(screen, None)
     }
 
-    /// Builds the 3D BSP of some of a screen scene's pieces.
-    pub fn build_from(screen: &ScreenScene, pieces: Vec<Piece>) -> Bsp {
+    /// [`Self::build`], reporting stage "painter order": fragments placed in nodes of the
+    /// fragments known so far (the total grows as pieces are split).
+    pub fn build_with_progress(screen: &ScreenScene, report: Option<Report>) -> Bsp {
+        Self::build_from(screen, initial_pieces(screen), report)
+    }
+
+    /// Builds the 3D BSP of some of a screen scene's pieces, reporting as
+    /// [`Self::build_with_progress`].
+    pub fn build_from(screen: &ScreenScene, pieces: Vec<Piece>, report: Option<Report>) -> Bsp {
+        let mut ticker = Ticker::new(report, "painter order", pieces.len() as u64);
+        // Pieces waiting in `work`: fragments placed + pending is every fragment known so far.
+        let mut pending = pieces.len();
         let mut stats = BspStats {
             polygons: screen.polys.len(),
             pieces: pieces.len(),
@@ -232,6 +243,7 @@ impl Bsp {
         };
         let mut nodes: Vec<Node> = Vec::new();
         if pieces.is_empty() {
+            ticker.finish();
             return Bsp { nodes, stats };
         }
         enum Link {
@@ -242,6 +254,7 @@ impl Bsp {
         let mut work: Vec<(Link, usize, Vec<Piece>)> = vec![(Link::Root, 1, pieces)];
         while let Some((link, depth, list)) = work.pop() {
             let n = list.len();
+            pending -= n;
             let boxes: Vec<[f64; 4]> = if n == 1 {
                 Vec::new()
             } else {
@@ -287,13 +300,17 @@ impl Bsp {
                 Link::Neg(parent) => nodes[parent as usize].neg = Some(index),
                 Link::Pos(parent) => nodes[parent as usize].pos = Some(index),
             }
+            pending += neg.len() + pos.len();
             if !neg.is_empty() {
                 work.push((Link::Neg(index), depth + 1, std::mem::take(&mut neg)));
             }
             if !pos.is_empty() {
                 work.push((Link::Pos(index), depth + 1, std::mem::take(&mut pos)));
             }
+            let placed = stats.fragments as u64;
+            ticker.tick_of(placed, placed + pending as u64);
         }
+        ticker.finish();
         stats.nodes = nodes.len();
         Bsp { nodes, stats }
     }
@@ -353,7 +370,16 @@ impl Bsp {
 /// is built, so interpenetrating soups cost what their visible arrangement needs. The nearest
 /// first order only saves work (most pieces then meet only nearer ones); it decides nothing.
 pub fn visible_set(screen: &ScreenScene) -> (VisibleSet, CoverageStats) {
-    let coverage = coverage_of(screen, initial_pieces(screen));
+    visible_set_with_progress(screen, None)
+}
+
+/// [`visible_set`], reporting stage "visible set": pieces inserted into the coverage map of
+/// all the pieces.
+pub fn visible_set_with_progress(
+    screen: &ScreenScene,
+    report: Option<Report>,
+) -> (VisibleSet, CoverageStats) {
+    let coverage = coverage_of(screen, initial_pieces(screen), report);
     let stats = coverage.stats.clone();
     (
         VisibleSet {
@@ -363,8 +389,13 @@ pub fn visible_set(screen: &ScreenScene) -> (VisibleSet, CoverageStats) {
     )
 }
 
-/// The coverage map of `pieces`, inserted nearest corner first (see [`visible_set`]).
-fn coverage_of(screen: &ScreenScene, mut pieces: Vec<Piece>) -> Coverage<'_> {
+/// The coverage map of `pieces`, inserted nearest corner first (see [`visible_set`]),
+/// reporting stage "visible set".
+fn coverage_of<'a>(
+    screen: &'a ScreenScene,
+    mut pieces: Vec<Piece>,
+    report: Option<Report>,
+) -> Coverage<'a> {
     let near: Vec<i32> = screen
         .polys
         .iter()
@@ -372,9 +403,12 @@ fn coverage_of(screen: &ScreenScene, mut pieces: Vec<Piece>) -> Coverage<'_> {
         .collect();
     pieces.sort_by_key(|p| (near[p.poly as usize], tie_key(screen, p)));
     let mut coverage = Coverage::new(screen, &pieces);
-    for p in pieces {
+    let mut ticker = Ticker::new(report, "visible set", pieces.len() as u64);
+    for (i, p) in pieces.into_iter().enumerate() {
         coverage.insert(p);
+        ticker.tick(i as u64 + 1);
     }
+    ticker.finish();
     coverage
 }
 
@@ -391,13 +425,18 @@ pub struct Layers {
     pub bsp: BspStats,
 }
 
-/// The [`Layers`] of `screen`, where `translucent(poly)` says which screen polygons blend.
-pub fn layers(screen: &ScreenScene, translucent: impl Fn(u32) -> bool) -> Layers {
+/// The [`Layers`] of `screen`, where `translucent(poly)` says which screen polygons blend,
+/// reporting stages "visible set" (the opaque faces) and "painter order" (the translucent ones).
+pub fn layers(
+    screen: &ScreenScene,
+    translucent: impl Fn(u32) -> bool,
+    report: Option<Report>,
+) -> Layers {
     let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
         .into_iter()
         .partition(|p| translucent(p.poly));
-    let mut coverage = coverage_of(screen, opaque);
-    let bsp = Bsp::build_from(screen, see_through);
+    let mut coverage = coverage_of(screen, opaque, report);
+    let bsp = Bsp::build_from(screen, see_through, report);
     let mut fragments = Vec::new();
     for f in bsp.back_to_front() {
         coverage.unhidden_parts(f, &mut fragments);
@@ -515,6 +554,21 @@ impl super::VisibilityMethod for BspMethod {
         camera: &Camera,
         fill: Fill,
     ) -> super::VisibilityResult {
+        self.run_with_progress(scene, screen, camera, fill, None)
+    }
+}
+
+impl BspMethod {
+    /// [`super::VisibilityMethod::run`], reporting the progress of its long stages: "visible
+    /// set", "painter order" (translucent scenes), "regions" (see [`crate::progress`]).
+    pub fn run_with_progress(
+        &self,
+        scene: &Scene,
+        screen: &ScreenScene,
+        camera: &Camera,
+        fill: Fill,
+        report: Option<Report>,
+    ) -> super::VisibilityResult {
         let fallbacks = crate::exact::predicates::fallback_count();
         // Colour and opacity of every screen polygon, once.
         let paints: Vec<([f64; 3], f64)> = screen
@@ -531,7 +585,7 @@ impl super::VisibilityMethod for BspMethod {
         put("polygons", screen.polys.len().into());
         put("translucent_painter_order", translucent.into());
         let (opaque, see_through) = if translucent {
-            let l = layers(screen, blends);
+            let l = layers(screen, blends, report);
             put("pieces", (l.coverage.inserted + l.bsp.pieces).into());
             put("visible_pieces", l.opaque.pieces.len().into());
             put("fragments", l.bsp.fragments.into());
@@ -540,7 +594,7 @@ impl super::VisibilityMethod for BspMethod {
             put("translucent_parts", l.translucent.len().into());
             (l.opaque.pieces, l.translucent)
         } else {
-            let (visible, cs) = visible_set(screen);
+            let (visible, cs) = visible_set_with_progress(screen, report);
             put("pieces", cs.inserted.into());
             put("visible_pieces", visible.pieces.len().into());
             put("replaced", cs.replaced.into());
