@@ -397,11 +397,7 @@ fn indexed_fixture_reads_polygons_def_use_and_skips_unknown_nodes() {
     // One warning per unknown element, naming it and its line; the tetra's ImageTexture is not
     // applied (no TextureCoordinate), said once although the Shape is used twice.
     let w = &s.stats.warnings;
-    for (name, line) in [
-        ("NavigationInfo", 4),
-        ("Background", 5),
-        ("ImageTexture", 21),
-    ] {
+    for (name, line) in [("NavigationInfo", 4), ("ImageTexture", 21)] {
         let hits: Vec<_> = w
             .iter()
             .filter(|m| m.contains(&format!("<{name}>")))
@@ -409,7 +405,9 @@ fn indexed_fixture_reads_polygons_def_use_and_skips_unknown_nodes() {
         assert_eq!(hits.len(), 1, "{name}: {w:?}");
         assert!(hits[0].contains(&format!("line {line}")), "{hits:?}");
     }
-    assert_eq!(w.len(), 3, "{w:?}");
+    assert_eq!(w.len(), 2, "{w:?}");
+    // The Background is read (its skyColor), not skipped.
+    assert_eq!(s.background, Some([0.1, 0.1, 0.2]));
 }
 
 #[test]
