@@ -468,12 +468,19 @@ fn progress_bar(len: u64, what: &str) -> ProgressBar {
 
 fn load_scene(input: &InputArgs) -> sightline::Result<Scene> {
     // Bytes of the file on disk (compressed for .gz), so the total is known from the start.
-    let bar = progress_bar(0, "loading");
-    bar.set_style(
-        ProgressStyle::with_template("{msg:10} [{bar:40}] {bytes}/{total_bytes} ({elapsed})")
-            .unwrap_or_else(|_| ProgressStyle::default_bar())
-            .progress_chars("=> "),
-    );
+    let bar = if std::io::stderr().is_terminal() {
+        let size = std::fs::metadata(&input.input).map_or(0, |m| m.len());
+        let b = ProgressBar::with_draw_target(Some(size), ProgressDrawTarget::stderr());
+        b.set_style(
+            ProgressStyle::with_template("{msg:10} [{bar:40}] {bytes}/{total_bytes} ({elapsed})")
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> "),
+        );
+        b.set_message("loading");
+        b
+    } else {
+        ProgressBar::hidden()
+    };
     let scene = scene::load_with_progress(&input.input, input.format, &mut |read, total| {
         bar.set_length(total);
         bar.set_position(read);

@@ -25,7 +25,8 @@ pub(crate) struct Input<R> {
     /// The unread data is `buf[start..end]`.
     start: usize,
     end: usize,
-    pos: u64,
+    /// Bytes of the data before `buf[0]`.
+    base: u64,
     /// Length of the data when known before reading it (a plain file, bytes in memory); `None`
     /// for a decompressed stream.
     len: Option<u64>,
@@ -43,7 +44,7 @@ impl<R: Read> Input<R> {
             buf: vec![0; size],
             start: 0,
             end: 0,
-            pos: 0,
+            base: 0,
             len,
             error: None,
             eof: false,
@@ -52,7 +53,7 @@ impl<R: Read> Input<R> {
 
     /// Bytes consumed so far.
     pub(crate) fn pos(&self) -> u64 {
-        self.pos
+        self.base + self.start as u64
     }
 
     /// The length of the data, when known before reading it.
@@ -62,7 +63,7 @@ impl<R: Read> Input<R> {
 
     /// Bytes left, when the length is known.
     pub(crate) fn left(&self) -> Option<u64> {
-        self.len.map(|l| l.saturating_sub(self.pos))
+        self.len.map(|l| l.saturating_sub(self.pos()))
     }
 
     fn fail(&mut self, e: io::Error) {
@@ -74,7 +75,6 @@ impl<R: Read> Input<R> {
     #[inline]
     fn consume(&mut self, n: usize) {
         self.start += n;
-        self.pos += n as u64;
     }
 
     /// Reads more data after what is unread (moved to the front of the buffer first). False when
@@ -84,6 +84,7 @@ impl<R: Read> Input<R> {
             return false;
         }
         self.buf.copy_within(self.start..self.end, 0);
+        self.base += self.start as u64;
         self.end -= self.start;
         self.start = 0;
         loop {
@@ -120,7 +121,7 @@ impl<R: Read> Input<R> {
     /// before it; the first line loses a leading BOM. False at the end of the data.
     pub(crate) fn line(&mut self, out: &mut Vec<u8>) -> bool {
         out.clear();
-        let first = self.pos == 0;
+        let first = self.pos() == 0;
         let mut any = false;
         loop {
             if self.start == self.end && !self.refill() {
@@ -193,8 +194,9 @@ impl<R: Read> Input<R> {
         if self.eof || self.error.is_some() {
             return;
         }
+        // Read past the buffer: it counts as consumed.
         match self.r.read_to_end(out) {
-            Ok(n) => self.pos += n as u64,
+            Ok(n) => self.base += n as u64,
             Err(e) => self.fail(e),
         }
     }

@@ -1,4 +1,6 @@
-//! Choosing a loader: by file extension (`.gz` is looked through), or by an explicit [`Format`].
+//! Choosing a loader: by file extension (`.gz` is looked through), or by an explicit [`Format`];
+//! and feeding it the file as a stream (decompressed as it is read when it starts with the gzip
+//! magic bytes), with progress counted in bytes of the file on disk.
 
 use super::Scene;
 use super::input::{Gunzip, Input, Progress};

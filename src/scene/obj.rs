@@ -28,8 +28,8 @@
 //! `usemtl`, `newmtl`) it is replaced, the same way on both sides of a material lookup, and
 //! `mtllib` file names are used as raw bytes on Unix.
 //!
-//! Also holds the small byte-level text helpers the other text loaders (MTL, ASCII STL, ASCII PLY)
-//! share.
+//! The file is read one line at a time (see [`super::input`]): memory holds the scene being built
+//! and the current line, not the file.
 
 use super::input::Input;
 use super::text::{Tokens, file_label, lossy, parse_coord, parse_int, show, strip_comment};
