@@ -537,16 +537,25 @@ impl StageBars {
 }
 
 fn load_scene(input: &InputArgs) -> sightline::Result<Scene> {
-    let spinner = if std::io::stderr().is_terminal() {
-        let s = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
-        s.set_message(format!("loading {}", input.input.display()));
-        s.enable_steady_tick(std::time::Duration::from_millis(100));
-        s
+    // Bytes of the file on disk (compressed for .gz), so the total is known from the start.
+    let bar = if std::io::stderr().is_terminal() {
+        let size = std::fs::metadata(&input.input).map_or(0, |m| m.len());
+        let b = ProgressBar::with_draw_target(Some(size), ProgressDrawTarget::stderr());
+        b.set_style(
+            ProgressStyle::with_template("{msg:10} [{bar:40}] {bytes}/{total_bytes} ({elapsed})")
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> "),
+        );
+        b.set_message("loading");
+        b
     } else {
         ProgressBar::hidden()
     };
-    let scene = scene::load(&input.input, input.format);
-    spinner.finish_and_clear();
+    let scene = scene::load_with_progress(&input.input, input.format, &mut |read, total| {
+        bar.set_length(total);
+        bar.set_position(read);
+    });
+    bar.finish_and_clear();
     let scene = scene?;
     let name = input.input.display();
     for w in &scene.stats.warnings {

@@ -186,3 +186,116 @@ fn objects_groups_triangulation_and_degenerates() {
     let area: f64 = s.faces[..2].iter().map(|f| s.face_normal(f).z / 2.0).sum();
     assert!((area - 4.0).abs() < 1e-12, "{area}");
 }
+
+/// Gzips `bytes` into `dir/name`.
+fn write_gz(dir: &std::path::Path, name: &str, bytes: &[u8]) -> std::path::PathBuf {
+    use std::io::Write;
+    let path = dir.join(name);
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+    gz.write_all(bytes).unwrap();
+    std::fs::write(&path, gz.finish().unwrap()).unwrap();
+    path
+}
+
+#[test]
+fn gzipped_fixtures_load_as_the_plain_ones() {
+    // A .gz is decompressed as it is parsed, without knowing its decompressed size in advance.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        common::fixtures().join("cube.mtl"),
+        dir.path().join("cube.mtl"),
+    )
+    .unwrap();
+    for name in [
+        "cube.obj",
+        "cube_ascii.stl",
+        "cube_binary.stl",
+        "cube_ascii.ply",
+        "cube_binary_le.ply",
+        "cube_binary_be.ply",
+        "seed_transparent.x3d",
+        "indexed.x3d",
+    ] {
+        let plain = fixture(name);
+        let bytes = std::fs::read(common::fixtures().join(name)).unwrap();
+        let path = write_gz(dir.path(), &format!("{name}.gz"), &bytes);
+        let gz = load(&path, None).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(gz.positions, plain.positions, "{name}");
+        assert_eq!(gz.corners, plain.corners, "{name}");
+        assert_eq!(ids(&gz), ids(&plain), "{name}");
+        assert_eq!(
+            gz.stats.warnings.len(),
+            plain.stats.warnings.len(),
+            "{name}"
+        );
+        assert_eq!(gz.background, plain.background, "{name}");
+    }
+}
+
+#[test]
+fn gzipped_binary_stl_with_a_solid_header_is_binary() {
+    // Without the decompressed size, the rule is: `solid` and no NUL in the first KiB is ASCII.
+    let dir = tempfile::tempdir().unwrap();
+    let bytes = common::binary_stl("solid cube, but binary", &common::cube_triangles());
+    let path = write_gz(dir.path(), "cube.stl.gz", &bytes);
+    let s = load(&path, None).unwrap_or_else(|e| panic!("{e}"));
+    cube_checks(&s, 12);
+}
+
+#[test]
+fn gzipped_truncated_binary_stl_fails_as_the_plain_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut bytes = common::cube_binary_stl();
+    bytes.truncate(84 + 50 * 5 + 20);
+    std::fs::write(dir.path().join("t.stl"), &bytes).unwrap();
+    let plain = load(&dir.path().join("t.stl"), None).unwrap_err();
+    let gz = load(&write_gz(dir.path(), "t.stl.gz", &bytes), None).unwrap_err();
+    assert_eq!(plain.location, sightline::Location::Byte(84 + 50 * 5));
+    assert_eq!(gz.location, plain.location);
+    assert_eq!(gz.message, plain.message);
+}
+
+#[test]
+fn broken_gzip_data_is_an_error_not_a_short_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let bytes = std::fs::read(common::fixtures().join("cube.obj")).unwrap();
+    let path = write_gz(dir.path(), "c.obj.gz", &bytes);
+    let gz = std::fs::read(&path).unwrap();
+    // Cut in the middle: the faces that are there must not load as a smaller scene.
+    std::fs::write(&path, &gz[..gz.len() / 2]).unwrap();
+    let e = load(&path, None).unwrap_err();
+    assert_eq!(e.location, sightline::Location::File, "{e}");
+    assert!(e.message.starts_with("bad gzip data"), "{e}");
+    // A corrupted checksum.
+    let mut bad = gz.clone();
+    let n = bad.len();
+    bad[n - 6] ^= 0xff;
+    std::fs::write(&path, &bad).unwrap();
+    let e = load(&path, None).unwrap_err();
+    assert!(e.message.starts_with("bad gzip data"), "{e}");
+}
+
+#[test]
+fn progress_counts_the_bytes_of_the_file_on_disk() {
+    let dir = tempfile::tempdir().unwrap();
+    let bytes = std::fs::read(common::fixtures().join("cube.obj")).unwrap();
+    let gz = write_gz(dir.path(), "c.obj.gz", &bytes);
+    for path in [common::fixtures().join("cube.obj"), gz] {
+        let size = std::fs::metadata(&path).unwrap().len();
+        let mut calls: Vec<(u64, u64)> = Vec::new();
+        sightline::scene::load_with_progress(&path, None, &mut |read, total| {
+            calls.push((read, total))
+        })
+        .unwrap();
+        assert!(calls.iter().all(|&(_, t)| t == size), "{calls:?}");
+        assert!(calls.windows(2).all(|w| w[0].0 <= w[1].0), "{calls:?}");
+        assert_eq!(calls.last(), Some(&(size, size)), "{}", path.display());
+    }
+}
+
+#[test]
+fn only_x3d_scenes_have_a_background() {
+    for name in ["cube.obj", "cube_ascii.stl", "cube_binary_le.ply"] {
+        assert_eq!(fixture(name).background, None, "{name}");
+    }
+}

@@ -4,7 +4,7 @@
 use glam::{DMat4, DQuat, DVec3};
 use sightline::scene::primitives::{self, Parts};
 use sightline::scene::{Format, SceneBuilder, load, load_bytes};
-use sightline::{Material, Scene};
+use sightline::{Location, Material, Scene};
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
@@ -397,11 +397,7 @@ fn indexed_fixture_reads_polygons_def_use_and_skips_unknown_nodes() {
     // One warning per unknown element, naming it and its line; the tetra's ImageTexture is not
     // applied (no TextureCoordinate), said once although the Shape is used twice.
     let w = &s.stats.warnings;
-    for (name, line) in [
-        ("NavigationInfo", 4),
-        ("Background", 5),
-        ("ImageTexture", 21),
-    ] {
+    for (name, line) in [("NavigationInfo", 4), ("ImageTexture", 21)] {
         let hits: Vec<_> = w
             .iter()
             .filter(|m| m.contains(&format!("<{name}>")))
@@ -409,7 +405,9 @@ fn indexed_fixture_reads_polygons_def_use_and_skips_unknown_nodes() {
         assert_eq!(hits.len(), 1, "{name}: {w:?}");
         assert!(hits[0].contains(&format!("line {line}")), "{hits:?}");
     }
-    assert_eq!(w.len(), 3, "{w:?}");
+    assert_eq!(w.len(), 2, "{w:?}");
+    // The Background is read (its skyColor), not skipped.
+    assert_eq!(s.background, Some([0.1, 0.1, 0.2]));
 }
 
 #[test]
@@ -637,4 +635,54 @@ fn overflowing_transforms_are_refused_or_skipped() {
         </Transform></Scene>"#;
     let e = load_bytes(text.as_bytes(), Format::X3d, "o.x3d", None).unwrap_err();
     assert!(e.message.contains("not finite once transformed"), "{e}");
+}
+
+#[test]
+fn background_is_the_first_sky_colour_or_black() {
+    // No Background: X3D's default, black.
+    assert_eq!(fixture("seed_transparent.x3d").background, Some([0.0; 3]));
+    let s = fixture("background.x3d");
+    assert_eq!(s.background, Some([0.2, 0.4, 0.6]));
+    assert!(s.stats.warnings.is_empty(), "{:?}", s.stats.warnings);
+    let tri =
+        r#"<Shape><TriangleSet><Coordinate point="0 0 0 1 0 0 0 1 0"/></TriangleSet></Shape>"#;
+    // A Background without skyColor is black too; a colour outside [0,1] is clamped, with a warning.
+    assert_eq!(
+        x3d(&format!("<Scene><Background/>{tri}</Scene>")).background,
+        Some([0.0; 3])
+    );
+    let s = x3d(&format!(
+        "<Scene><Background skyColor='2 0.5 -1'/>{tri}</Scene>"
+    ));
+    assert_eq!(s.background, Some([1.0, 0.5, 0.0]));
+    assert!(
+        s.stats.warnings.iter().any(|w| w.contains("skyColor")),
+        "{:?}",
+        s.stats.warnings
+    );
+}
+
+#[test]
+fn bad_sky_colour_names_the_background() {
+    let tri =
+        r#"<Shape><TriangleSet><Coordinate point="0 0 0 1 0 0 0 1 0"/></TriangleSet></Shape>"#;
+    for (sky, needle) in [
+        ("0.1 x 0.3", "x"),
+        ("0.1 0.2", "multiple of 3"),
+        ("0 nan 0", "nan"),
+    ] {
+        let text = format!("<Scene>\n{tri}\n<Background\n skyColor='{sky}'/>\n</Scene>");
+        let e = load_bytes(text.as_bytes(), Format::X3d, "bg.x3d", None).unwrap_err();
+        assert_eq!(e.file, "bg.x3d");
+        assert_eq!(
+            e.location,
+            Location::Element {
+                name: "Background".into(),
+                line: 3
+            },
+            "{e}"
+        );
+        assert!(e.message.contains("skyColor"), "{e}");
+        assert!(e.message.contains(needle), "{e}");
+    }
 }

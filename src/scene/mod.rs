@@ -11,6 +11,7 @@
 
 pub mod analysis;
 mod builder;
+mod input;
 pub mod load;
 mod mtl;
 mod obj;
@@ -21,7 +22,7 @@ mod text;
 mod x3d;
 
 pub use builder::{CornerAttrs, FaceOutcome, SceneBuilder};
-pub use load::{Format, load, load_bytes};
+pub use load::{Format, load, load_bytes, load_with_progress};
 
 use glam::DVec3;
 use std::ops::Range;
@@ -130,6 +131,9 @@ pub struct Scene {
     /// The lights the scene is seen under (`--light`, `--specular`): every shaded method uses
     /// them (see `raster::lighting::Lighting::of_scene`).
     pub lights: SceneLights,
+    /// The background colour the file asks for (linear RGB in [0,1]): X3D's Background (black by
+    /// default); `None` for formats that have no such notion.
+    pub background: Option<[f64; 3]>,
 }
 
 /// A light source of intensity `intensity` (RGB).

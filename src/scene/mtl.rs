@@ -13,9 +13,11 @@
 //! `-type` with one value, `-mm` with two, `-o`, `-s`, `-t` with one to three numbers) are skipped,
 //! not applied, and the rest of the line is the file name (it may hold spaces). `map_Kd` with no
 //! file name after its options is an error. Errors (bad or non-finite numbers, wrong value
-//! counts, a texture without a file) name the `.mtl` file and line.
+//! counts, a texture without a file) name the `.mtl` file and line. Lines may end in `\r\n`; a
+//! leading UTF-8 byte-order mark is skipped.
 
 use super::Material;
+use super::input::BOM;
 use super::text::{Tokens, lossy, next_line, parse_f64, show, strip_comment};
 use crate::error::LoadError;
 
@@ -42,7 +44,8 @@ pub(super) fn parse_with_textures(
     let mut textures: Vec<TextureName> = Vec::new();
     let mut unknown_seen: Vec<Vec<u8>> = Vec::new();
     let mut warned_orphan = false;
-    let mut pos = 0;
+    // A byte-order mark is not part of the first statement.
+    let mut pos = if bytes.starts_with(BOM) { BOM.len() } else { 0 };
     let mut line = 0;
     while pos < bytes.len() {
         let (raw, next) = next_line(bytes, pos);

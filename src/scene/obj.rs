@@ -7,8 +7,8 @@
 //! Read: `v x y z [w]` (w and trailing vertex colours ignored), `vt u [v [w]]` (v defaults to 0,
 //! w ignored), `vn x y z`, `f` with any number of corners in the forms `i`, `i/t`, `i//n`, `i/t/n`,
 //! negative indices (relative to the vertices, texture coordinates or normals defined before that
-//! line), `o`, `usemtl`, `mtllib`, `#` comments, `\r\n` endings and trailing-backslash line
-//! continuations. A face gets texture coordinates (normals) only when every one of its corners
+//! line), `o`, `usemtl`, `mtllib`, `#` comments, `\r\n` endings, a leading UTF-8 byte-order
+//! mark and trailing-backslash line continuations. A face gets texture coordinates (normals) only when every one of its corners
 //! names one; texture and normal indices are range-checked like vertex indices, and an index out
 //! of range is an error naming the face's line.
 //!
@@ -28,39 +28,50 @@
 //! `usemtl`, `newmtl`) it is replaced, the same way on both sides of a material lookup, and
 //! `mtllib` file names are used as raw bytes on Unix.
 //!
-//! Also holds the small byte-level text helpers the other text loaders (MTL, ASCII STL, ASCII PLY)
-//! share.
+//! The file is read one line at a time (see [`super::input`]): memory holds the scene being built
+//! and the current line, not the file.
 
-use super::text::{
-    Tokens, file_label, lossy, next_line, parse_coord, parse_int, show, strip_comment,
-};
+use super::input::Input;
+use super::text::{Tokens, file_label, lossy, parse_coord, parse_int, show, strip_comment};
 use super::{CornerAttrs, Material, Scene, SceneBuilder, mtl};
 use crate::error::LoadError;
 use glam::DVec3;
 use std::collections::HashMap;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
-pub(super) fn load(bytes: &[u8], name: &str, dir: Option<&Path>) -> Result<Scene, LoadError> {
+pub(super) fn load<R: Read>(
+    mut input: Input<R>,
+    name: &str,
+    dir: Option<&Path>,
+) -> Result<Scene, LoadError> {
+    let result = parse(&mut input, name, dir);
+    input.finish(result, name)
+}
+
+/// Reads the statements one (logical) line at a time from reused buffers.
+fn parse<R: Read>(
+    input: &mut Input<R>,
+    name: &str,
+    dir: Option<&Path>,
+) -> Result<Scene, LoadError> {
     let mut parser = Parser::new(name, dir);
-    let mut pos = 0;
     let mut line_no = 0usize;
+    let mut buf: Vec<u8> = Vec::new();
+    let mut cont: Vec<u8> = Vec::new();
     let mut joined: Vec<u8> = Vec::new();
-    while pos < bytes.len() {
-        let (raw, next) = next_line(bytes, pos);
-        pos = next;
+    while input.line(&mut buf) {
         line_no += 1;
         let start_line = line_no;
-        let mut text = strip_comment(raw);
+        let mut text = strip_comment(&buf);
         if text.last() == Some(&b'\\') {
             // Continuation: rare, so only this path copies.
             joined.clear();
             joined.extend_from_slice(&text[..text.len() - 1]);
             joined.push(b' ');
-            while pos < bytes.len() {
-                let (raw, next) = next_line(bytes, pos);
-                pos = next;
+            while input.line(&mut cont) {
                 line_no += 1;
-                let t = strip_comment(raw);
+                let t = strip_comment(&cont);
                 if let Some(head) = t.strip_suffix(b"\\") {
                     joined.extend_from_slice(head);
                     joined.push(b' ');
@@ -569,6 +580,10 @@ fn path_from_bytes(b: &[u8]) -> PathBuf {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn load(bytes: &[u8], name: &str, dir: Option<&Path>) -> Result<Scene, LoadError> {
+        super::load(Input::new(bytes, Some(bytes.len() as u64)), name, dir)
+    }
     use crate::error::Location;
 
     fn load_str(s: &str) -> Result<Scene, LoadError> {

@@ -16,32 +16,44 @@
 //! occupy no bytes and are not iterated (their count may be anything).
 //!
 //! ASCII bodies are read one element entry per line (blank lines are skipped); an entry with too
-//! few or too many values is an error at its line.
+//! few or too many values is an error at its line. Header and ASCII lines may end in `\r\n`; a
+//! leading UTF-8 byte-order mark is skipped.
+//!
+//! The data is streamed. When its length is not known in advance (a gzipped file), the checks
+//! against the bytes left are replaced by finding the end where it comes (a truncated element is
+//! then reported at the entry that runs out), and memory is reserved for at most
+//! `UNKNOWN_LEFT_RESERVE` entries ahead of reading them.
 
-use super::text::{Tokens, file_label, lossy, next_line, parse_f64, parse_int, show};
+use super::input::Input;
+use super::text::{Tokens, file_label, lossy, parse_f64, parse_int, show, token_at};
 use super::{Scene, SceneBuilder};
 use crate::error::{LoadError, Location};
 use glam::DVec3;
+use std::io::Read;
 
-pub(super) fn load(bytes: &[u8], name: &str) -> Result<Scene, LoadError> {
-    let h = header(bytes, name)?;
+pub(super) fn load<R: Read>(mut input: Input<R>, name: &str) -> Result<Scene, LoadError> {
+    let result = parse(&mut input, name);
+    input.finish(result, name)
+}
+
+fn parse<R: Read>(input: &mut Input<R>, name: &str) -> Result<Scene, LoadError> {
+    let h = header(input, name)?;
     let data = match h.encoding {
         Encoding::Ascii => read_body(
             &h,
             &mut AsciiBody {
-                bytes,
-                pos: h.body,
+                input,
+                buf: Vec::new(),
+                at: 0,
                 line: h.end_line,
-                toks: Tokens::new(&[]),
             },
             name,
         )?,
         Encoding::Binary { big_endian } => read_body(
             &h,
             &mut BinBody {
-                bytes,
-                pos: h.body,
-                record: h.body,
+                record: input.pos(),
+                input,
                 big_endian,
             },
             name,
@@ -149,8 +161,6 @@ enum Encoding {
 struct Header {
     encoding: Encoding,
     elements: Vec<Element>,
-    /// Byte offset of the body.
-    body: usize,
     /// Line of `end_header`.
     end_line: usize,
     vertex: Option<VertexRole>,
@@ -169,10 +179,11 @@ struct FaceRole {
     list: usize,
 }
 
-fn header(bytes: &[u8], name: &str) -> Result<Header, LoadError> {
+fn header<R: Read>(input: &mut Input<R>, name: &str) -> Result<Header, LoadError> {
     let err = |line: usize, msg: String| LoadError::line(name, line, msg);
-    let (first, mut pos) = next_line(bytes, 0);
-    if first.trim_ascii() != b"ply" {
+    let mut text = Vec::new();
+    input.line(&mut text);
+    if text.trim_ascii() != b"ply" {
         return Err(err(
             1,
             "not a PLY file: the first line must be 'ply'".to_string(),
@@ -182,13 +193,11 @@ fn header(bytes: &[u8], name: &str) -> Result<Header, LoadError> {
     let mut encoding = None;
     let mut elements: Vec<Element> = Vec::new();
     loop {
-        if pos >= bytes.len() {
+        if !input.line(&mut text) {
             return Err(err(line, "the header has no 'end_header' line".to_string()));
         }
-        let (text, next) = next_line(bytes, pos);
-        pos = next;
         line += 1;
-        let mut toks = Tokens::new(text);
+        let mut toks = Tokens::new(&text);
         let Some(kw) = toks.next() else { continue };
         match kw {
             b"end_header" => break,
@@ -386,7 +395,6 @@ fn header(bytes: &[u8], name: &str) -> Result<Header, LoadError> {
     Ok(Header {
         encoding,
         elements,
-        body: pos,
         end_line,
         vertex,
         face,
@@ -436,35 +444,37 @@ trait Body {
     /// Whether a list of `n` items of `ty` could fit in what is left.
     fn list_fits(&self, n: u64, ty: Ty) -> bool;
     /// Whether anything but whitespace is left after the last element.
-    fn has_trailing(&self) -> bool;
+    fn has_trailing(&mut self) -> bool;
 }
 
-struct BinBody<'a> {
-    bytes: &'a [u8],
-    pos: usize,
-    record: usize,
+/// Only a bound on allocation where the data left is unknown (a decompressed stream): how many
+/// entries memory is reserved for ahead of reading them.
+const UNKNOWN_LEFT_RESERVE: u64 = 1 << 16;
+
+struct BinBody<'i, R> {
+    input: &'i mut Input<R>,
+    record: u64,
     big_endian: bool,
 }
 
-impl BinBody<'_> {
-    fn left(&self) -> u64 {
-        self.bytes.len().saturating_sub(self.pos) as u64
-    }
+impl<R: Read> BinBody<'_, R> {
     fn take<const N: usize>(&mut self) -> Option<[u8; N]> {
-        let s = self.bytes.get(self.pos..self.pos.checked_add(N)?)?;
-        self.pos += N;
-        let mut a: [u8; N] = s.try_into().ok()?;
+        let mut a: [u8; N] = self.input.take()?;
         if self.big_endian {
             a.reverse();
         }
         Some(a)
     }
+    /// The length of the data: known in advance, or found on reaching its end.
+    fn total(&self) -> u64 {
+        self.input.len().unwrap_or(self.input.pos())
+    }
 }
 
-impl Body for BinBody<'_> {
+impl<R: Read> Body for BinBody<'_, R> {
     fn begin(&mut self) -> bool {
-        self.record = self.pos;
-        self.pos < self.bytes.len()
+        self.record = self.input.pos();
+        !self.input.at_end()
     }
     fn value(&mut self, ty: Ty) -> Result<Num, ValueError> {
         // Bytes are reversed to little-endian order by `take` for big-endian files.
@@ -496,16 +506,16 @@ impl Body for BinBody<'_> {
         Ok(())
     }
     fn location(&self) -> Location {
-        Location::Byte(self.record as u64)
+        Location::Byte(self.record)
     }
     fn eof_location(&self) -> Location {
-        Location::Byte(self.bytes.len() as u64)
+        Location::Byte(self.total())
     }
     fn short_message(&self, element: &str, i: u64, count: u64) -> String {
         format!(
             "truncated: {element} {} of {count} (starting at this byte) runs past the end of the file ({} bytes)",
             i + 1,
-            self.bytes.len()
+            self.total()
         )
     }
     fn precheck(&self, e: &Element, name: &str) -> Result<(), LoadError> {
@@ -516,7 +526,10 @@ impl Body for BinBody<'_> {
                 Kind::List { .. } => return Ok(()),
             }
         }
-        let left = self.left();
+        // Unknown length: truncation is found where the data ends.
+        let Some(left) = self.input.left() else {
+            return Ok(());
+        };
         match e.count.checked_mul(size) {
             Some(need) if need <= left => Ok(()),
             need => {
@@ -524,7 +537,7 @@ impl Body for BinBody<'_> {
                 let need = need.map_or("more than 2^64".to_string(), |n| n.to_string());
                 Err(LoadError::byte(
                     name,
-                    self.pos as u64 + complete * size,
+                    self.input.pos() + complete * size,
                     format!(
                         "truncated: element '{}' declares {} entries of {size} bytes ({need} bytes) but only {left} bytes are left, enough for {complete}",
                         lossy(&e.name),
@@ -543,41 +556,47 @@ impl Body for BinBody<'_> {
                 Kind::List { count, .. } => count.size() as u64,
             })
             .sum();
-        self.left() / min.max(1)
+        self.input
+            .left()
+            .map_or(UNKNOWN_LEFT_RESERVE, |left| left / min.max(1))
     }
     fn list_fits(&self, n: u64, ty: Ty) -> bool {
+        let Some(left) = self.input.left() else {
+            return true; // reading item by item finds the end
+        };
         n.checked_mul(ty.size() as u64)
-            .is_some_and(|need| need <= self.left())
+            .is_some_and(|need| need <= left)
     }
-    fn has_trailing(&self) -> bool {
-        self.pos < self.bytes.len()
+    fn has_trailing(&mut self) -> bool {
+        !self.input.at_end()
     }
 }
 
-struct AsciiBody<'a> {
-    bytes: &'a [u8],
-    pos: usize,
+struct AsciiBody<'i, R> {
+    input: &'i mut Input<R>,
+    /// The current entry's line.
+    buf: Vec<u8>,
+    /// Where the next value is looked for in `buf`.
+    at: usize,
     /// Line of the current entry (of `end_header` before the first).
     line: usize,
-    toks: Tokens<'a>,
 }
 
-impl<'a> Body for AsciiBody<'a> {
+impl<R: Read> Body for AsciiBody<'_, R> {
     fn begin(&mut self) -> bool {
-        while self.pos < self.bytes.len() {
-            let (text, next) = next_line(self.bytes, self.pos);
-            self.pos = next;
+        while self.input.line(&mut self.buf) {
             self.line += 1;
-            let t = text.trim_ascii();
-            if !t.is_empty() {
-                self.toks = Tokens::new(t);
+            if !self.buf.trim_ascii().is_empty() {
+                self.at = 0;
                 return true;
             }
         }
         false
     }
     fn value(&mut self, ty: Ty) -> Result<Num, ValueError> {
-        let t = self.toks.next().ok_or(ValueError::End)?;
+        let (start, end) = token_at(&self.buf, self.at).ok_or(ValueError::End)?;
+        self.at = end;
+        let t = &self.buf[start..end];
         let v = if ty.is_int() {
             parse_int(t).map(Num::I)
         } else {
@@ -586,10 +605,10 @@ impl<'a> Body for AsciiBody<'a> {
         v.ok_or_else(|| ValueError::Bad(format!("bad number '{}'", show(t))))
     }
     fn end(&mut self) -> Result<(), String> {
-        match self.toks.next() {
-            Some(t) => Err(format!(
+        match token_at(&self.buf, self.at) {
+            Some((start, end)) => Err(format!(
                 "unexpected value '{}' after the end of the entry",
-                show(t)
+                show(&self.buf[start..end])
             )),
             None => Ok(()),
         }
@@ -611,17 +630,21 @@ impl<'a> Body for AsciiBody<'a> {
     }
     fn max_entries(&self, e: &Element) -> u64 {
         // Each value takes at least one character and one separator.
-        let left = self.bytes.len().saturating_sub(self.pos) as u64;
-        left / (2 * e.props.len() as u64).max(1)
+        self.input.left().map_or(UNKNOWN_LEFT_RESERVE, |left| {
+            left / (2 * e.props.len() as u64).max(1)
+        })
     }
     fn list_fits(&self, _: u64, _: Ty) -> bool {
         // The line runs out first; reading item by item stops there.
         true
     }
-    fn has_trailing(&self) -> bool {
-        self.bytes
-            .get(self.pos..)
-            .is_some_and(|r| !r.trim_ascii().is_empty())
+    fn has_trailing(&mut self) -> bool {
+        while self.input.line(&mut self.buf) {
+            if !self.buf.trim_ascii().is_empty() {
+                return true;
+            }
+        }
+        false
     }
 }
 
@@ -802,6 +825,10 @@ fn read_body<B: Body>(h: &Header, body: &mut B, name: &str) -> Result<Data, Load
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn load(bytes: &[u8], name: &str) -> Result<Scene, LoadError> {
+        super::load(Input::new(bytes, Some(bytes.len() as u64)), name)
+    }
 
     const HEAD: &str = "ply\nformat ascii 1.0\ncomment hi\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty list uchar float extra\nelement face 1\nproperty uchar flags\nproperty list uchar int vertex_indices\nelement edge 1\nproperty int a\nproperty int b\nend_header\n";
 

@@ -7,50 +7,68 @@
 //!
 //! Detection: a file whose size is exactly 84 + 50 x (the count at byte 80) is binary, even if it
 //! starts with `solid` (many binary exporters write that into the header). Otherwise a file that
-//! starts with `solid` and has no NUL byte in its first KiB is ASCII; anything else is binary.
+//! starts with `solid` (after an optional UTF-8 byte-order mark and whitespace) and has no NUL
+//! byte in its first KiB is ASCII; anything else is binary. The data is streamed, so for a
+//! gzipped file, whose decompressed size is not known before reading it, the first rule cannot
+//! apply: there a `solid` start without a NUL byte in the first KiB means ASCII. The two rules
+//! differ only for a binary file with a `solid` header and no NUL byte in its first KiB, which
+//! needs more than 2^24 triangles (the count's high byte is not 0) and nearly a KiB of triangle
+//! data without a zero byte; truncation of a gzipped binary STL is reported where the data ends.
+//!
+//! Lines may end in `\r\n`.
 //!
 //! Binary: one mesh named after the file. ASCII: each `solid` begins a mesh named after it;
 //! keywords are case-insensitive and tokens may be split across lines in any way; a missing final
 //! `endsolid` is a warning.
 
+use super::input::{BOM, Input};
 use super::text::{file_label, lossy, parse_f64, show};
 use super::{Scene, SceneBuilder};
 use crate::error::LoadError;
 use glam::DVec3;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hash, Hasher};
+use std::io::Read;
+use std::ops::Range;
 
-pub(super) fn load(bytes: &[u8], name: &str) -> Result<Scene, LoadError> {
-    if is_binary(bytes) {
-        binary(bytes, name)
+pub(super) fn load<R: Read>(mut input: Input<R>, name: &str) -> Result<Scene, LoadError> {
+    let len = input.len();
+    let result = if is_binary(input.peek(DETECT), len) {
+        binary(&mut input, name)
     } else {
-        ascii(bytes, name)
-    }
+        ascii(&mut input, name)
+    };
+    input.finish(result, name)
 }
+
+/// How much of the start of the file the detection looks at for NUL bytes.
+const DETECT: usize = 1024;
 
 fn binary_count(bytes: &[u8]) -> Option<u32> {
     let c = bytes.get(80..84)?;
     Some(u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
 }
 
-fn is_binary(bytes: &[u8]) -> bool {
-    if let Some(count) = binary_count(bytes)
-        && 84 + 50 * count as u64 == bytes.len() as u64
+/// The detection rule (module docs), from the first [`DETECT`] bytes and the length of the data
+/// when it is known.
+fn is_binary(head: &[u8], len: Option<u64>) -> bool {
+    if let (Some(count), Some(len)) = (binary_count(head), len)
+        && 84 + 50 * count as u64 == len
     {
         return true;
     }
-    let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    let text = head.strip_prefix(BOM).unwrap_or(head);
     let text = text.trim_ascii_start();
     let solid = text
         .get(..5)
         .is_some_and(|s| s.eq_ignore_ascii_case(b"solid"));
     // An ASCII STL never holds a NUL; a binary one nearly always does in its count field.
-    !solid || bytes[..bytes.len().min(1024)].contains(&0)
+    !solid || head.contains(&0)
 }
 
-fn binary(bytes: &[u8], name: &str) -> Result<Scene, LoadError> {
-    let len = bytes.len() as u64;
-    let Some(count) = binary_count(bytes) else {
+fn binary<R: Read>(input: &mut Input<R>, name: &str) -> Result<Scene, LoadError> {
+    let Some(header) = input.take::<84>() else {
+        let len = input.pos();
         return Err(LoadError::byte(
             name,
             0,
@@ -59,16 +77,23 @@ fn binary(bytes: &[u8], name: &str) -> Result<Scene, LoadError> {
             ),
         ));
     };
+    let count = binary_count(&header).unwrap_or(0);
     let needed = 84 + 50 * count as u64;
-    if len < needed {
+    let truncated = |len: u64| {
         let complete = (len - 84) / 50;
-        return Err(LoadError::byte(
+        LoadError::byte(
             name,
             84 + 50 * complete,
             format!(
                 "truncated binary STL: expected {count} triangles ({needed} bytes), file has {len} bytes"
             ),
-        ));
+        )
+    };
+    // With the length known, truncation is reported before reading; otherwise where data ends.
+    if let Some(len) = input.len()
+        && len < needed
+    {
+        return Err(truncated(len));
     }
     if 3 * count as u64 > u32::MAX as u64 {
         // Corner indices in a scene are u32.
@@ -79,7 +104,9 @@ fn binary(bytes: &[u8], name: &str) -> Result<Scene, LoadError> {
         ));
     }
     let mut b = SceneBuilder::new(name);
-    if len > needed {
+    if let Some(len) = input.len()
+        && len > needed
+    {
         b.warn(format!(
             "{name}: {} bytes after the last of {count} triangles ignored",
             len - needed
@@ -87,9 +114,18 @@ fn binary(bytes: &[u8], name: &str) -> Result<Scene, LoadError> {
     }
     let material = b.default_material();
     b.begin_mesh(file_label(name));
-    let mut weld = Welder::with_capacity((count as usize).saturating_mul(3) / 6);
-    for (t, rec) in bytes[84..needed as usize].chunks_exact(50).enumerate() {
-        let offset = 84 + 50 * t as u64;
+    // The count is only trusted as far as the data it claims is known to exist.
+    let trusted = if input.len().is_some() {
+        count as usize
+    } else {
+        (count as usize).min(1 << 20)
+    };
+    let mut weld = Welder::with_capacity(trusted.saturating_mul(3) / 6);
+    for t in 0..count as u64 {
+        let offset = 84 + 50 * t;
+        let Some(rec) = input.take::<50>() else {
+            return Err(truncated(input.pos()));
+        };
         let mut idx = [0u32; 3];
         for (k, i) in idx.iter_mut().enumerate() {
             let mut p = [0.0f64; 3];
@@ -115,6 +151,14 @@ fn binary(bytes: &[u8], name: &str) -> Result<Scene, LoadError> {
         }
         b.add_face(&idx, material);
     }
+    if input.len().is_none() {
+        let extra = input.skip_rest();
+        if extra > 0 {
+            b.warn(format!(
+                "{name}: {extra} bytes after the last of {count} triangles ignored"
+            ));
+        }
+    }
     finish(b, name)
 }
 
@@ -134,85 +178,97 @@ fn finish(b: SceneBuilder, name: &str) -> Result<Scene, LoadError> {
 
 // ---- ASCII ----
 
-/// Whitespace-separated tokens of the whole file, with the line each is on.
-struct Lexer<'a> {
-    bytes: &'a [u8],
+/// Whitespace-separated tokens of the whole file, read line by line, with the line each is on.
+/// A token is a range of `buf`, the current line.
+struct Lexer<'i, R> {
+    input: &'i mut Input<R>,
+    buf: Vec<u8>,
     pos: usize,
+    /// Line number of `buf`.
     line: usize,
     /// Line of the last token returned (where end-of-file errors are reported).
     last_line: usize,
 }
 
-impl<'a> Lexer<'a> {
-    fn next(&mut self) -> Option<&'a [u8]> {
-        while let Some(&c) = self.bytes.get(self.pos) {
-            if c == b'\n' {
-                self.line += 1;
-            } else if !c.is_ascii_whitespace() {
+impl<R: Read> Lexer<'_, R> {
+    fn next(&mut self) -> Option<Range<usize>> {
+        loop {
+            while self
+                .buf
+                .get(self.pos)
+                .is_some_and(|c| c.is_ascii_whitespace())
+            {
+                self.pos += 1;
+            }
+            if self.pos < self.buf.len() {
                 break;
             }
-            self.pos += 1;
+            if !self.input.line(&mut self.buf) {
+                return None;
+            }
+            self.line += 1;
+            self.pos = 0;
         }
         let start = self.pos;
         while self
-            .bytes
+            .buf
             .get(self.pos)
             .is_some_and(|c| !c.is_ascii_whitespace())
         {
             self.pos += 1;
         }
-        if start == self.pos {
-            return None;
-        }
         self.last_line = self.line;
-        self.bytes.get(start..self.pos)
+        Some(start..self.pos)
     }
 
-    /// The rest of the current line (a solid's name), trimmed; the newline is left unread.
-    fn rest_of_line(&mut self) -> &'a [u8] {
-        let start = self.pos;
-        while self.bytes.get(self.pos).is_some_and(|&c| c != b'\n') {
-            self.pos += 1;
-        }
-        self.bytes.get(start..self.pos).unwrap_or(&[]).trim_ascii()
+    fn text(&self, r: &Range<usize>) -> &[u8] {
+        &self.buf[r.clone()]
+    }
+
+    /// The rest of the current line (a solid's name), trimmed.
+    fn rest_of_line(&mut self) -> &[u8] {
+        let start = self.pos.min(self.buf.len());
+        self.pos = self.buf.len();
+        self.buf[start..].trim_ascii()
     }
 }
 
-struct Ascii<'a> {
+struct Ascii<'a, 'i, R> {
     name: &'a str,
-    lex: Lexer<'a>,
+    lex: Lexer<'i, R>,
     b: SceneBuilder,
     weld: Welder,
     material: u32,
 }
 
-fn ascii(bytes: &[u8], name: &str) -> Result<Scene, LoadError> {
-    let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+fn ascii<R: Read>(input: &mut Input<R>, name: &str) -> Result<Scene, LoadError> {
     let mut b = SceneBuilder::new(name);
     let material = b.default_material();
+    let capacity = input.len().map_or(0, |l| l as usize / 200);
     let mut p = Ascii {
         name,
         lex: Lexer {
-            bytes: text,
+            input,
+            buf: Vec::new(),
             pos: 0,
-            line: 1,
+            line: 0,
             last_line: 1,
         },
         b,
-        weld: Welder::with_capacity(bytes.len() / 200),
+        weld: Welder::with_capacity(capacity),
         material,
     };
     p.solids()?;
     finish(p.b, name)
 }
 
-impl<'a> Ascii<'a> {
+impl<R: Read> Ascii<'_, '_, R> {
     fn err(&self, line: usize, msg: impl Into<String>) -> LoadError {
         LoadError::line(self.name, line, msg)
     }
 
-    /// The next token, or an error naming what was expected.
-    fn expect_token(&mut self, what: &str) -> Result<&'a [u8], LoadError> {
+    /// The next token (a range of the lexer's line), or an error naming what was expected.
+    fn expect_token(&mut self, what: &str) -> Result<Range<usize>, LoadError> {
         match self.lex.next() {
             Some(t) => Ok(t),
             None => Err(self.err(
@@ -223,7 +279,8 @@ impl<'a> Ascii<'a> {
     }
 
     fn expect_keyword(&mut self, kw: &str) -> Result<(), LoadError> {
-        let t = self.expect_token(&format!("'{kw}'"))?;
+        let r = self.expect_token(&format!("'{kw}'"))?;
+        let t = self.lex.text(&r);
         if t.eq_ignore_ascii_case(kw.as_bytes()) {
             Ok(())
         } else {
@@ -235,7 +292,8 @@ impl<'a> Ascii<'a> {
     }
 
     fn solids(&mut self) -> Result<(), LoadError> {
-        while let Some(t) = self.lex.next() {
+        while let Some(r) = self.lex.next() {
+            let t = self.lex.text(&r);
             if !t.eq_ignore_ascii_case(b"solid") {
                 return Err(self.err(
                     self.lex.last_line,
@@ -250,13 +308,14 @@ impl<'a> Ascii<'a> {
                 label
             });
             loop {
-                let Some(t) = self.lex.next() else {
+                let Some(r) = self.lex.next() else {
                     self.b.warn(format!(
                         "{}:{solid_line}: solid has no 'endsolid'",
                         self.name
                     ));
                     return Ok(());
                 };
+                let t = self.lex.text(&r);
                 if t.eq_ignore_ascii_case(b"endsolid") {
                     self.lex.rest_of_line();
                     break;
@@ -279,7 +338,8 @@ impl<'a> Ascii<'a> {
         for _ in 0..3 {
             // The stored normal is not used, but must be a number (NaN allowed: some exporters
             // write it for degenerate triangles).
-            let t = self.expect_token("a normal component")?;
+            let r = self.expect_token("a normal component")?;
+            let t = self.lex.text(&r);
             if parse_f64(t).is_none() {
                 return Err(self.err(
                     self.lex.last_line,
@@ -292,7 +352,8 @@ impl<'a> Ascii<'a> {
         let mut idx = [0u32; 3];
         let mut n = 0;
         loop {
-            let t = self.expect_token("'vertex' or 'endloop'")?;
+            let r = self.expect_token("'vertex' or 'endloop'")?;
+            let t = self.lex.text(&r);
             if t.eq_ignore_ascii_case(b"endloop") {
                 break;
             }
@@ -310,8 +371,9 @@ impl<'a> Ascii<'a> {
             }
             let mut p = [0.0f64; 3];
             for c in &mut p {
-                let t = self.expect_token("a vertex coordinate")?;
-                *c = super::text::parse_coord(t).map_err(|m| self.err(self.lex.last_line, m))?;
+                let r = self.expect_token("a vertex coordinate")?;
+                *c = super::text::parse_coord(self.lex.text(&r))
+                    .map_err(|m| self.err(self.lex.last_line, m))?;
             }
             idx[n] = self
                 .weld
@@ -405,6 +467,10 @@ impl Welder {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn load(bytes: &[u8], name: &str) -> Result<Scene, LoadError> {
+        super::load(Input::new(bytes, Some(bytes.len() as u64)), name)
+    }
     use crate::error::Location;
 
     fn tri_bytes(tris: &[[[f32; 3]; 3]], header: &[u8]) -> Vec<u8> {

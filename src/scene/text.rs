@@ -59,6 +59,18 @@ impl<'a> Iterator for Tokens<'a> {
     }
 }
 
+/// The first whitespace-separated token of `line` at or after `from`, as (start, end).
+#[inline]
+pub(crate) fn token_at(line: &[u8], from: usize) -> Option<(usize, usize)> {
+    let rest = line.get(from..)?;
+    let start = from + rest.iter().position(|b| !b.is_ascii_whitespace())?;
+    let end = line[start..]
+        .iter()
+        .position(|b| b.is_ascii_whitespace())
+        .map_or(line.len(), |n| start + n);
+    Some((start, end))
+}
+
 /// A decimal float (anything `str::parse::<f64>` accepts, including `nan` and `inf`).
 #[inline]
 pub(crate) fn parse_f64(t: &[u8]) -> Option<f64> {

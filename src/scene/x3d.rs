@@ -40,7 +40,10 @@
 //!   with a `TextureCoordinate` (default mappings are not generated; a warning says so), and then,
 //!   X3D's rule, it replaces the diffuse colour: the material's diffuse becomes white when the
 //!   image exists (the texture colour times the lighting);
-//! - every other element (NavigationInfo, Background, Color, lights,
+//! - the first `Background` (anywhere in the Scene) gives the scene's background colour: its first
+//!   `skyColor` colour, clamped to [0,1] with a warning; without a Background or a skyColor the
+//!   background is X3D's default, black. Other Backgrounds and their other fields are ignored;
+//! - every other element (NavigationInfo, Color, lights,
 //!   ROUTEs, ...) is skipped with everything inside it, with one warning per element name giving
 //!   the line of its first occurrence. `<head>` under `<X3D>` is skipped silently;
 //! - a TriangleSet whose vertex count is not a multiple of 3, or an IndexedTriangleSet whose
@@ -59,6 +62,7 @@
 //!   is limited to [`MAX_DEPTH`] levels, and DEF/USE expansion by caps on visited nodes, vertices,
 //!   faces and corners.
 
+use super::input::Input;
 use super::primitives::{self, Parts, Tessellation};
 use super::{CornerAttrs, Material, Scene, SceneBuilder, Viewpoint};
 use crate::error::LoadError;
@@ -67,6 +71,7 @@ use roxmltree::{Document, Node, NodeId, ParsingOptions};
 use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 /// Deepest element nesting followed (the traversal is recursive).
@@ -81,7 +86,15 @@ const MAX_XML_NODES: u32 = 1 << 26;
 
 type Res<T> = Result<T, LoadError>;
 
-pub(super) fn load(bytes: &[u8], name: &str, dir: Option<&Path>) -> Res<Scene> {
+/// Reads the whole document (the XML parser needs it), then loads it.
+pub(super) fn load<R: Read>(mut input: Input<R>, name: &str, dir: Option<&Path>) -> Res<Scene> {
+    let mut bytes = Vec::new();
+    input.read_rest(&mut bytes);
+    let result = load_document(&bytes, name, dir);
+    input.finish(result, name)
+}
+
+fn load_document(bytes: &[u8], name: &str, dir: Option<&Path>) -> Res<Scene> {
     let text = decode(bytes, name)?;
     let options = ParsingOptions {
         // X3D files usually carry a DOCTYPE; roxmltree still guards against entity bombs.
@@ -117,10 +130,13 @@ pub(super) fn load(bytes: &[u8], name: &str, dir: Option<&Path>) -> Res<Scene> {
     };
     ld.active.push(scene.id());
     ld.children(scene, &DMat4::IDENTITY, 0)?;
+    let background = ld.background(scene)?;
     let line = ld.line(scene);
-    ld.b.finish().ok_or_else(|| {
+    let mut out = ld.b.finish().ok_or_else(|| {
         LoadError::element(name, "Scene", line, "empty scene: no Shape produced a face")
-    })
+    })?;
+    out.background = Some(background);
+    Ok(out)
 }
 
 /// The text of the file: UTF-8 (a BOM is skipped), or UTF-16 with a BOM.
@@ -442,6 +458,9 @@ impl<'a, 'i> Loader<'a, 'i> {
     /// Visits a child of a grouping node.
     fn visit(&mut self, node: Node<'a, 'i>, m: &DMat4, depth: usize) -> Res<()> {
         let name = node.tag_name().name();
+        if name == "Background" {
+            return Ok(()); // read by `background`
+        }
         if !matches!(
             name,
             "Group" | "StaticGroup" | "Collision" | "Anchor" | "Transform" | "Shape" | "Viewpoint"
@@ -1354,6 +1373,33 @@ impl<'a, 'i> Loader<'a, 'i> {
             }
         }
         Ok(())
+    }
+
+    /// The background colour: the first `Background`'s first `skyColor` colour (clamped to
+    /// [0,1] with a warning), black (X3D's default) when there is no Background or no skyColor.
+    fn background(&mut self, scene: Node<'a, 'i>) -> Res<[f64; 3]> {
+        const BLACK: [f64; 3] = [0.0; 3];
+        let Some(node) = scene.descendants().find(|n| n.has_tag_name("Background")) else {
+            return Ok(BLACK);
+        };
+        let Some(node) = self.resolve(node) else {
+            return Ok(BLACK);
+        };
+        let Some(v) = self.floats(node, "skyColor")? else {
+            return Ok(BLACK);
+        };
+        if v.len() % 3 != 0 {
+            return Err(self.count_err(node, "skyColor", "a multiple of 3 numbers", v.len()));
+        }
+        let Some(first) = v.get(..3) else {
+            return Ok(BLACK);
+        };
+        let c = DVec3::from_slice(first);
+        let clamped = c.clamp(DVec3::ZERO, DVec3::ONE);
+        if clamped != c {
+            self.clamp_warning(node, "skyColor");
+        }
+        Ok(clamped.to_array())
     }
 
     fn viewpoint(&mut self, node: Node, m: &DMat4) -> Res<()> {
