@@ -865,6 +865,9 @@ fn a_camera_that_sees_nothing_writes_empty_output_and_warns() {
                 let v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
                 assert_eq!(v["faces"], serde_json::json!([]));
             }
+        }
+    }
+}
 
 /// Point 12 of issue 8: the README's first command shows the cube's form, its three visible
 /// faces in three clearly different colours (the top and the left one are both red), as does
@@ -1089,6 +1092,7 @@ fn compare_diff_marks_mismatched_pixels_in_red() {
     };
     assert_eq!(red_pixels("fixtures/cyclic_bars.obj", "bsp"), 0);
     assert!(red_pixels("fixtures/cyclic_bars.obj", "painter") > 0);
+}
 
 /// Point 9 of issue 8: progress bars ("visible set", "painter order", "rendering") are drawn
 /// only when stderr is a terminal; piped, a render's stderr carries nothing.

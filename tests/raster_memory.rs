@@ -55,6 +55,7 @@ fn few_faces(w: f64, h: f64) -> Drawing {
         width: w as u32,
         height: h as u32,
         background: Some([1.0, 1.0, 1.0]),
+        seams: Default::default(),
         items: vec![
             item(
                 0,
