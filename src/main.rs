@@ -310,9 +310,11 @@ struct RenderArgs {
     /// Pixel colours: flat shading, or face id + 1 as 24-bit RGB on black.
     #[arg(long, value_enum, default_value_t = Fill::Shade)]
     fill: Fill,
-    /// Background colour for shaded images, r,g,b in 0..=255.
-    #[arg(long, value_parser = parse_rgb, default_value = "255,255,255", allow_hyphen_values = true)]
-    background: [u8; 3],
+    /// Background of shaded images: r,g,b in 0..=255, or `none` (SVG without a background
+    /// rectangle, for figures placed over other content). Default: an X3D scene's Background
+    /// skyColor (black when it has none, as X3D specifies), white for other formats.
+    #[arg(long, value_parser = parse_background, value_name = "R,G,B|none", allow_hyphen_values = true)]
+    background: Option<BackgroundArg>,
     /// Also write the depth buffer as 16-bit grey PNG (0 near, 65535 far and background).
     #[arg(long, value_name = "FILE.png")]
     depth: Option<PathBuf>,
@@ -463,6 +465,35 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
             .map_err(|_| format!("'{t}' is not a positive integer"))
     };
     Ok((p(w)?, p(h)?))
+}
+
+/// `--background`: a colour, or none at all.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum BackgroundArg {
+    Color([u8; 3]),
+    None,
+}
+
+fn parse_background(s: &str) -> Result<BackgroundArg, String> {
+    match s.trim() {
+        "none" => Ok(BackgroundArg::None),
+        rgb => parse_rgb(rgb).map(BackgroundArg::Color),
+    }
+}
+
+/// The background a render draws: the flag's, else the scene's own (an X3D Background), else
+/// white. `None`: no background (`--background none`, SVG only).
+fn background_of(flag: Option<BackgroundArg>, scene: &Scene) -> Option<[u8; 3]> {
+    match flag {
+        Some(BackgroundArg::None) => None,
+        Some(BackgroundArg::Color(c)) => Some(c),
+        None => Some(
+            scene
+                .background
+                .map(sightline::raster::shade::to_u8)
+                .unwrap_or([255; 3]),
+        ),
+    }
 }
 
 fn parse_rgb(s: &str) -> Result<[u8; 3], String> {
@@ -682,7 +713,14 @@ fn ignored_flag(a: &RenderArgs, format: OutputFormat) -> Option<String> {
         OutputFormat::Svg => "SVG",
         OutputFormat::Json => "JSON",
     };
-    let svg_only = [("--stroke", a.stroke), ("--crisp", a.crisp)];
+    let svg_only = [
+        ("--stroke", a.stroke),
+        ("--crisp", a.crisp),
+        (
+            "--background none",
+            a.background == Some(BackgroundArg::None),
+        ),
+    ];
     if let Some((flag, _)) = svg_only.iter().find(|(_, given)| *given)
         && format != OutputFormat::Svg
     {
@@ -696,7 +734,9 @@ fn ignored_flag(a: &RenderArgs, format: OutputFormat) -> Option<String> {
         ("--specular", a.specular != 0.0),
         ("--shininess", a.shininess != DEFAULT_SHININESS),
         ("--light", !a.light.is_empty()),
+        ("--headlight", a.headlight),
         ("--no-headlight", a.no_headlight),
+        ("--background", a.background.is_some()),
         ("--shading", a.shading != ShadingArg::Flat),
     ];
     let (flag, _) = lighting.iter().find(|(_, given)| *given)?;
@@ -819,7 +859,9 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             st.faces, st.frustum_culled, st.backface_culled
         );
     }
-    let bg = a.background.map(|c| c as f64 / 255.0);
+    let background = background_of(a.background, &scene);
+    // PNG pixels always have a background (`--background none` is refused for PNG above).
+    let background_rgb = background.unwrap_or([255; 3]);
     let t2 = Instant::now();
     // What writes the output, streamed into the file (a drawing's PNG is rasterized by strips).
     type Emit<'a> = Box<dyn FnOnce(&mut dyn std::io::Write) -> std::io::Result<()> + 'a>;
@@ -830,7 +872,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             &prepared,
             &camera,
             a.fill,
-            a.background,
+            background_rgb,
             a.depth.is_some(),
         );
         use sightline::raster::lighting;
@@ -860,7 +902,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
                     &lighting::Lighting::of_scene(&scene, &camera),
                     a.shading.into(),
                     &textures,
-                    a.background.map(|c| c as f64 / 255.0),
+                    background_rgb.map(|c| c as f64 / 255.0),
                 )
                 .into_iter()
                 .map(sightline::raster::shade::to_u8)
@@ -872,7 +914,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
                 &r.poly,
                 &camera,
                 a.fill,
-                a.background,
+                background_rgb,
             ),
         };
         if let (Some(depth_path), Some(depth)) = (&a.depth, &r.depth) {
@@ -889,7 +931,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
         let merge = format != OutputFormat::Json;
         let mut result = run_method(method, &scene, &prepared, &camera, a.fill, merge);
         if result.drawing.background.is_none() {
-            result.drawing.background = Some(bg);
+            result.drawing.background = background.map(|c| c.map(|v| v as f64 / 255.0));
         }
         let detail = serde_json::Value::Object(result.stats.clone()).to_string();
         let emit: Emit = match format {

@@ -82,10 +82,13 @@ fn the_bsp_method_reports_the_stages_it_runs_and_draws_the_same() {
     let mut translucent = random_triangle_soup(100, 3);
     translucent.materials[0].transparency = 0.5;
     // Translucent scenes run the opaque faces' visible set (none here), then the painter order
-    // of the translucent ones.
+    // of the translucent ones; the opaque pieces are then merged into regions.
     for (scene, stages) in [
-        (opaque, &["visible set"][..]),
-        (translucent, &["visible set", "painter order"][..]),
+        (opaque, &["visible set", "regions"][..]),
+        (
+            translucent,
+            &["visible set", "painter order", "regions"][..],
+        ),
     ] {
         let cam = iso(&scene);
         let screen = prepare(&scene, &cam, CullMode::Auto).screen;

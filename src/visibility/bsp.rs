@@ -24,7 +24,7 @@
 //! polygon), the z-buffer's tie rule: output never depends on input order.
 
 use super::coverage::{Coverage, CoverageStats, bounds, tie_key};
-use super::regions::{regions, surfaces};
+use super::regions::{regions, regions_with_progress, surfaces};
 use super::seams::shared_edges;
 use crate::camera::Camera;
 use crate::exact::polygon::{Piece, Split, convex_pieces, separated};
@@ -637,7 +637,7 @@ impl BspMethod {
             }
         };
         let group_of = |p: &Piece| group[p.poly as usize];
-        let mut items: Vec<DrawItem> = regions(&opaque, screen, group_of)
+        let mut items: Vec<DrawItem> = regions_with_progress(&opaque, screen, group_of, report)
             .into_iter()
             .map(|r| item(opaque[r.piece].poly, &r.faces, r.rings))
             .collect();

@@ -9,6 +9,7 @@ use super::coverage::bounds;
 use super::grid::for_each_near;
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
+use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
 use glam::DVec3;
@@ -33,6 +34,18 @@ pub fn regions<K: Ord>(
     screen: &ScreenScene,
     key: impl Fn(&Piece) -> K,
 ) -> Vec<Region> {
+    regions_with_progress(pieces, screen, key, None)
+}
+
+/// [`regions`], reporting stage "regions": pieces merged of all.
+pub fn regions_with_progress<K: Ord>(
+    pieces: &[Piece],
+    screen: &ScreenScene,
+    key: impl Fn(&Piece) -> K,
+    report: Option<Report>,
+) -> Vec<Region> {
+    let mut ticker = Ticker::new(report, "regions", pieces.len() as u64);
+    let mut merged_pieces = 0;
     let s = Samples::new(screen.width, screen.height);
     let mut groups: BTreeMap<K, Vec<usize>> = BTreeMap::new();
     for (i, p) in pieces.iter().enumerate() {
@@ -42,6 +55,9 @@ pub fn regions<K: Ord>(
     let vertices = shared_vertex_pixels(pieces, &s);
     let mut out = Vec::new();
     for members in groups.into_values() {
+        // The pieces of the groups before this one are merged.
+        ticker.tick(merged_pieces);
+        merged_pieces += members.len() as u64;
         let group: Vec<&Piece> = members.iter().map(|&i| &pieces[i]).collect();
         let group_vertices: Vec<&[[f64; 2]]> =
             members.iter().map(|&i| vertices[i].as_slice()).collect();
@@ -80,6 +96,7 @@ pub fn regions<K: Ord>(
             });
         }
     }
+    ticker.finish();
     out
 }
 
