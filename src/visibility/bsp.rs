@@ -24,7 +24,7 @@
 //! polygon), the z-buffer's tie rule: output never depends on input order.
 
 use super::coverage::{Coverage, CoverageStats, bounds, tie_key};
-use super::regions::{regions, regions_with_progress, surfaces};
+use super::regions::{outline, regions, regions_of, shared_vertex_pixels, surfaces};
 use super::seams::shared_edges;
 use crate::camera::Camera;
 use crate::exact::polygon::{Piece, Split, convex_pieces, separated};
@@ -637,7 +637,9 @@ impl BspMethod {
             }
         };
         let group_of = |p: &Piece| group[p.poly as usize];
-        let mut items: Vec<DrawItem> = regions_with_progress(&opaque, screen, group_of, report)
+        // One rounding per exact vertex, for the regions, the outline and the seams alike.
+        let vertices = shared_vertex_pixels(&opaque, &Samples::new(screen.width, screen.height));
+        let mut items: Vec<DrawItem> = regions_of(&opaque, &vertices, screen, group_of, report)
             .into_iter()
             .map(|r| item(opaque[r.piece].poly, &r.faces, r.rings))
             .collect();
@@ -653,14 +655,10 @@ impl BspMethod {
             ));
         }
         let seams = if self.seams {
-            let samples = Samples::new(screen.width, screen.height);
             let color = |p: &Piece| paints[p.poly as usize].0;
             Seams {
-                strokes: seam_strokes(&opaque, &group_of, &color, &samples),
-                outline: regions(&opaque, screen, |_| ())
-                    .into_iter()
-                    .flat_map(|r| r.rings)
-                    .collect(),
+                strokes: seam_strokes(&opaque, &vertices, &group_of, &color),
+                outline: outline(&opaque, &vertices),
             }
         } else {
             Seams::default()
@@ -682,13 +680,13 @@ impl BspMethod {
 /// two colours (8-bit, then the smaller), one [`SeamStroke`] per colour in colour order.
 fn seam_strokes(
     pieces: &[Piece],
+    vertices: &[Vec<[f64; 2]>],
     group: &dyn Fn(&Piece) -> u32,
     color: &dyn Fn(&Piece) -> [f64; 3],
-    samples: &Samples,
 ) -> Vec<SeamStroke> {
     use crate::raster::shade::to_u8;
     let mut by_color: BTreeMap<[u8; 3], SeamStroke> = BTreeMap::new();
-    for e in shared_edges(pieces, |i| group(&pieces[i]), samples) {
+    for e in shared_edges(pieces, vertices, |i| group(&pieces[i])) {
         let [ca, cb] = e.pieces.map(|i| color(&pieces[i]));
         let key = |c: [f64; 3]| {
             let u = to_u8(c);

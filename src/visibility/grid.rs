@@ -74,16 +74,21 @@ impl BoxGrid {
     }
 }
 
-/// For every box `a`, in order, calls `f(a, near)` with the other boxes whose closed extents meet
-/// box `a`'s, ascending: the candidate neighbours of `a` (a filter: the caller decides exactly).
-pub(crate) fn for_each_near(boxes: &[[f64; 4]], mut f: impl FnMut(usize, &[usize])) {
+/// For every box `a` that `wanted(a)` selects, in order, calls `f(a, near)` with the other boxes
+/// whose closed extents meet box `a`'s, ascending: the candidate neighbours of `a` (a filter:
+/// the caller decides exactly).
+pub(crate) fn for_each_near(
+    boxes: &[[f64; 4]],
+    wanted: impl Fn(usize) -> bool,
+    mut f: impl FnMut(usize, &[usize]),
+) {
     let mut grid = BoxGrid::over(boxes, boxes.len());
     for (i, b) in boxes.iter().enumerate() {
         grid.insert(i as u32, b);
     }
     let mut near: Vec<usize> = Vec::new();
     let mut seen = vec![usize::MAX; boxes.len()];
-    for (a, ba) in boxes.iter().enumerate() {
+    for (a, ba) in boxes.iter().enumerate().filter(|&(a, _)| wanted(a)) {
         near.clear();
         grid.visit(
             ba,

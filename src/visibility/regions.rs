@@ -34,12 +34,15 @@ pub fn regions<K: Ord>(
     screen: &ScreenScene,
     key: impl Fn(&Piece) -> K,
 ) -> Vec<Region> {
-    regions_with_progress(pieces, screen, key, None)
+    let vertices = shared_vertex_pixels(pieces, &Samples::new(screen.width, screen.height));
+    regions_of(pieces, &vertices, screen, key, None)
 }
 
-/// [`regions`], reporting stage "regions": pieces merged of all.
-pub fn regions_with_progress<K: Ord>(
+/// [`regions`] of pieces whose [`shared_vertex_pixels`] are known, reporting stage "regions":
+/// pieces merged of all.
+pub fn regions_of<K: Ord>(
     pieces: &[Piece],
+    vertices: &[Vec<[f64; 2]>],
     screen: &ScreenScene,
     key: impl Fn(&Piece) -> K,
     report: Option<Report>,
@@ -52,7 +55,6 @@ pub fn regions_with_progress<K: Ord>(
         groups.entry(key(p)).or_default().push(i);
     }
     let face_of = |i: usize| screen.polys[pieces[i].poly as usize].id;
-    let vertices = shared_vertex_pixels(pieces, &s);
     let mut out = Vec::new();
     for members in groups.into_values() {
         // The pieces of the groups before this one are merged.
@@ -193,31 +195,46 @@ fn ring_set_contains(rings: &[Vec<[f64; 2]>], [px, py]: [f64; 2]) -> bool {
     inside
 }
 
+/// The outline of disjoint pieces (with their [`shared_vertex_pixels`]): the rings of their
+/// union, outer rings and holes, even-odd. T-junctions are left to the union (no conforming
+/// rings): where a union of drawing coordinates leaves a crack, it is far thinner than a pixel.
+pub fn outline(pieces: &[Piece], vertices: &[Vec<[f64; 2]>]) -> Vec<Vec<[f64; 2]>> {
+    debug_assert_eq!(pieces.len(), vertices.len());
+    merge_rings(vertices.to_vec())
+        .into_iter()
+        .flatten()
+        .collect()
+}
+
 /// Every piece's vertices in pixels, rounded once, with the same bits wherever pieces share an
 /// exact vertex (decided exactly): the first piece having it gives its rounding to the others.
 /// Two pieces' roundings of one point may otherwise differ in the last bits (each rounds its own
 /// implicit vertex), and a union then leaves a crack between them.
-fn shared_vertex_pixels(pieces: &[Piece], s: &Samples) -> Vec<Vec<[f64; 2]>> {
+pub fn shared_vertex_pixels(pieces: &[Piece], s: &Samples) -> Vec<Vec<[f64; 2]>> {
     let px = |[x, y]: [f64; 2]| [s.col_of(x), s.row_of(y)];
     let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
     let mut out: Vec<Vec<[f64; 2]>> = Vec::with_capacity(pieces.len());
-    for_each_near(&boxes, |a, near| {
-        let pa = &pieces[a];
-        let own = (0..pa.len())
-            .map(|k| {
-                // Earlier pieces already hold the first rounding of every vertex they share.
-                near.iter()
-                    .take_while(|&&b| b < a)
-                    .find_map(|&b| {
-                        (0..pieces[b].len())
-                            .find(|&v| pa.same_vertex(k, &pieces[b], v))
-                            .map(|v| out[b][v])
-                    })
-                    .unwrap_or_else(|| px(pa.vertex_f64(k)))
-            })
-            .collect();
-        out.push(own);
-    });
+    for_each_near(
+        &boxes,
+        |_| true,
+        |a, near| {
+            let pa = &pieces[a];
+            let own = (0..pa.len())
+                .map(|k| {
+                    // Earlier pieces already hold the first rounding of every vertex they share.
+                    near.iter()
+                        .take_while(|&&b| b < a)
+                        .find_map(|&b| {
+                            (0..pieces[b].len())
+                                .find(|&v| pa.same_vertex(k, &pieces[b], v))
+                                .map(|v| out[b][v])
+                        })
+                        .unwrap_or_else(|| px(pa.vertex_f64(k)))
+                })
+                .collect();
+            out.push(own);
+        },
+    );
     out
 }
 
@@ -229,41 +246,44 @@ fn conforming_rings(pieces: &[&Piece], vertices: &[&[[f64; 2]]]) -> Vec<Vec<[f64
     let boxes: Vec<[f64; 4]> = pieces.iter().map(|p| bounds(p)).collect();
     let mut rings = Vec::with_capacity(pieces.len());
     // The pieces whose bounds meet a piece's are the only ones with a vertex on its edges.
-    for_each_near(&boxes, |a, near| {
-        let pa = pieces[a];
-        let n = pa.len();
-        let mut ring = Vec::with_capacity(n);
-        for k in 0..n {
-            let start = vertices[a][k];
-            ring.push(start);
-            // Vertices of other pieces strictly inside edge k (line k, between vertices k
-            // and k+1): on line k, strictly inside every other line.
-            let (edge, edge_approx) = (&pa.lines[k], &pa.line_approx[k]);
-            let mut on_edge: Vec<(f64, [f64; 2])> = Vec::new();
-            for &b in near {
-                let pb = pieces[b];
-                for (v, &q) in vertices[b].iter().enumerate() {
-                    if pb.vertex_line_sign_with(v, edge, edge_approx) != Ordering::Equal {
-                        continue;
-                    }
-                    let inside =
-                        (pa.lines.iter().zip(&pa.line_approx))
-                            .enumerate()
-                            .all(|(j, (l, la))| {
+    for_each_near(
+        &boxes,
+        |_| true,
+        |a, near| {
+            let pa = pieces[a];
+            let n = pa.len();
+            let mut ring = Vec::with_capacity(n);
+            for k in 0..n {
+                let start = vertices[a][k];
+                ring.push(start);
+                // Vertices of other pieces strictly inside edge k (line k, between vertices k
+                // and k+1): on line k, strictly inside every other line.
+                let (edge, edge_approx) = (&pa.lines[k], &pa.line_approx[k]);
+                let mut on_edge: Vec<(f64, [f64; 2])> = Vec::new();
+                for &b in near {
+                    let pb = pieces[b];
+                    for (v, &q) in vertices[b].iter().enumerate() {
+                        if pb.vertex_line_sign_with(v, edge, edge_approx) != Ordering::Equal {
+                            continue;
+                        }
+                        let inside = (pa.lines.iter().zip(&pa.line_approx)).enumerate().all(
+                            |(j, (l, la))| {
                                 j == k || pb.vertex_line_sign_with(v, l, la) == Ordering::Greater
-                            });
-                    if inside {
-                        let t = (q[0] - start[0]).abs() + (q[1] - start[1]).abs();
-                        on_edge.push((t, q));
+                            },
+                        );
+                        if inside {
+                            let t = (q[0] - start[0]).abs() + (q[1] - start[1]).abs();
+                            on_edge.push((t, q));
+                        }
                     }
                 }
+                on_edge.sort_by(|x, y| x.0.total_cmp(&y.0));
+                on_edge.dedup_by(|x, y| x.1 == y.1);
+                ring.extend(on_edge.into_iter().map(|(_, q)| q));
             }
-            on_edge.sort_by(|x, y| x.0.total_cmp(&y.0));
-            on_edge.dedup_by(|x, y| x.1 == y.1);
-            ring.extend(on_edge.into_iter().map(|(_, q)| q));
-        }
-        rings.push(ring);
-    });
+            rings.push(ring);
+        },
+    );
     rings
 }
 

@@ -12,9 +12,9 @@
 
 use super::coverage::bounds;
 use super::grid::for_each_near;
-use crate::exact::Samples;
 use crate::exact::polygon::Piece;
 use std::cmp::Ordering;
+use std::collections::HashMap;
 
 /// One shared boundary segment.
 #[derive(Clone, Debug, PartialEq)]
@@ -26,82 +26,141 @@ pub struct SharedEdge {
 }
 
 /// The boundary segments shared by pieces of different groups (`group(i)` of piece i), in
-/// piece order. `pieces` must have pairwise disjoint interiors (a visible set).
+/// piece order. `pieces` must have pairwise disjoint interiors (a visible set); `vertices` are
+/// their [`shared_vertex_pixels`], so that one exact vertex has the same bits in every piece.
+///
+/// Two passes. Whole edges first: an edge of one piece whose ends are, the other way round,
+/// the ends of an edge of another is shared whole (the same exact vertices have the same
+/// rounding, so a hash of the rounded ends finds them; this is most of a mesh). Then the edges
+/// left, where T-junctions and occlusion boundaries are: an edge of another piece lies on the
+/// same line, decided exactly, and the part they share runs between the ends of each that lie
+/// in the other piece.
+///
+/// [`shared_vertex_pixels`]: super::regions::shared_vertex_pixels
 pub fn shared_edges(
     pieces: &[Piece],
+    vertices: &[Vec<[f64; 2]>],
     group: impl Fn(usize) -> u32,
-    samples: &Samples,
 ) -> Vec<SharedEdge> {
-    let px = |[x, y]: [f64; 2]| [samples.col_of(x), samples.row_of(y)];
-    let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
+    let bits = |p: [f64; 2], q: [f64; 2]| {
+        [
+            p[0].to_bits(),
+            p[1].to_bits(),
+            q[0].to_bits(),
+            q[1].to_bits(),
+        ]
+    };
+    let ends = |a: usize, k: usize| {
+        let v = &vertices[a];
+        (v[k], v[(k + 1) % v.len()])
+    };
+    let mut edges: HashMap<[u64; 4], (usize, usize)> =
+        HashMap::with_capacity(vertices.iter().map(Vec::len).sum());
+    for (a, v) in vertices.iter().enumerate() {
+        for k in 0..v.len() {
+            let (p, q) = ends(a, k);
+            edges.insert(bits(p, q), (a, k));
+        }
+    }
+    // Per piece and edge: shared whole with another piece.
+    let mut whole: Vec<Vec<bool>> = vertices.iter().map(|v| vec![false; v.len()]).collect();
     let mut out = Vec::new();
-    for_each_near(&boxes, |a, near| {
-        for &b in near.iter().filter(|&&b| b > a && group(b) != group(a)) {
-            if let Some(ends) = common_segment(&pieces[a], &pieces[b]) {
-                out.push(SharedEdge {
-                    pieces: [a, b],
-                    ends: ends.map(px),
-                });
+    for a in 0..pieces.len() {
+        for k in 0..vertices[a].len() {
+            let (p, q) = ends(a, k);
+            if let Some(&(b, j)) = edges.get(&bits(q, p)) {
+                whole[a][k] = true;
+                whole[b][j] = true;
+                if a < b && group(a) != group(b) {
+                    out.push(SharedEdge {
+                        pieces: [a, b],
+                        ends: [p, q],
+                    });
+                }
+            }
+        }
+    }
+    let open = |a: usize| whole[a].iter().any(|w| !w);
+    let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
+    for_each_near(&boxes, open, |a, near| {
+        for &b in near
+            .iter()
+            .filter(|&&b| b > a && group(b) != group(a) && open(b))
+        {
+            for k in (0..pieces[a].len()).filter(|&k| !whole[a][k]) {
+                let (pa, pb) = (
+                    (&pieces[a], &vertices[a][..]),
+                    (&pieces[b], &vertices[b][..]),
+                );
+                if let Some(ends) = shared_part(pa, k, pb, &whole[b]) {
+                    out.push(SharedEdge {
+                        pieces: [a, b],
+                        ends,
+                    });
+                    // Two disjoint convex pieces share at most one segment.
+                    break;
+                }
             }
         }
     });
     out
 }
 
-/// The segment two convex pieces with disjoint interiors share, in f64 grid coordinates, if
-/// they share one of positive length. Two disjoint convex polygons share at most one segment,
-/// lying on an edge line of each.
-fn common_segment(a: &Piece, b: &Piece) -> Option<[[f64; 2]; 2]> {
+/// The segment of positive length that edge k of piece `a` shares with an edge of piece `b`
+/// not shared whole elsewhere (`b_whole`), with the ends taken from the pieces' vertices in
+/// pixels (`va`, `vb`). `a` and `b` have disjoint interiors.
+fn shared_part(
+    (a, va): (&Piece, &[[f64; 2]]),
+    k: usize,
+    (b, vb): (&Piece, &[[f64; 2]]),
+    b_whole: &[bool],
+) -> Option<[[f64; 2]; 2]> {
     let (na, nb) = (a.len(), b.len());
-    for k in 0..na {
-        let (line, approx) = (&a.lines[k], &a.line_approx[k]);
-        // An edge j of b on a's line k: both of its ends on that line.
-        let on: Vec<bool> = (0..nb)
-            .map(|v| b.vertex_line_sign_with(v, line, approx) == Ordering::Equal)
-            .collect();
-        let Some(j) = (0..nb).find(|&j| on[j] && on[(j + 1) % nb]) else {
-            continue;
-        };
-        // The shared part of the two collinear edges runs between the ends of each that lie
-        // in the other piece (closed).
-        let in_closed = |p: &Piece, v: usize, q: &Piece| {
-            (q.lines.iter().zip(&q.line_approx))
-                .all(|(l, la)| p.vertex_line_sign_with(v, l, la) != Ordering::Less)
-        };
-        let mut ends: Vec<[f64; 2]> = Vec::with_capacity(4);
-        for v in [k, (k + 1) % na] {
-            if in_closed(a, v, b) {
-                ends.push(a.vertex_f64(v));
+    let (line, approx) = (&a.lines[k], &a.line_approx[k]);
+    // An edge j of b on a's line k: both of its ends on that line (a strictly convex piece has
+    // at most one edge on a line).
+    let on: Vec<bool> = (0..nb)
+        .map(|v| b.vertex_line_sign_with(v, line, approx) == Ordering::Equal)
+        .collect();
+    let j = (0..nb).find(|&j| !b_whole[j] && on[j] && on[(j + 1) % nb])?;
+    // The shared part of the two collinear edges runs between the ends of each that lie in the
+    // other piece (closed); an end of b that is an end of a (decided exactly) counts once.
+    // Edges with both pieces on one side of the line meet at most at a point: no segment.
+    let in_closed = |p: &Piece, v: usize, q: &Piece| {
+        (q.lines.iter().zip(&q.line_approx))
+            .all(|(l, la)| p.vertex_line_sign_with(v, l, la) != Ordering::Less)
+    };
+    let from_a: Vec<usize> = [k, (k + 1) % na]
+        .into_iter()
+        .filter(|&v| in_closed(a, v, b))
+        .collect();
+    let from_b = [j, (j + 1) % nb]
+        .into_iter()
+        .filter(|&w| in_closed(b, w, a) && !from_a.iter().any(|&v| a.same_vertex(v, b, w)));
+    let ends: Vec<[f64; 2]> = from_a
+        .iter()
+        .map(|&v| va[v])
+        .chain(from_b.map(|w| vb[w]))
+        .collect();
+    // Exactly distinct points on one line: the farthest two (in f64, which only picks among
+    // them) bound the shared part.
+    let mut best: Option<([[f64; 2]; 2], f64)> = None;
+    for (i, p) in ends.iter().enumerate() {
+        for q in &ends[i + 1..] {
+            let d = (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+            if best.is_none_or(|(_, bd)| d > bd) {
+                best = Some(([*p, *q], d));
             }
-        }
-        for v in [j, (j + 1) % nb] {
-            if in_closed(b, v, a) {
-                ends.push(b.vertex_f64(v));
-            }
-        }
-        // The two ends farthest apart (an end found from both pieces appears twice).
-        let mut best: Option<([[f64; 2]; 2], f64)> = None;
-        for (i, p) in ends.iter().enumerate() {
-            for q in &ends[i + 1..] {
-                let d = (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
-                if d > best.map_or(0.0, |(_, bd)| bd) {
-                    best = Some(([*p, *q], d));
-                }
-            }
-        }
-        // Collinear edges of pieces on the same side of the line meet at most at a point:
-        // then another pair of edges may still be shared.
-        if let Some((e, _)) = best {
-            return Some(e);
         }
     }
-    None
+    best.map(|(e, _)| e)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact::{GridPoint, Plane};
+    use crate::exact::{GridPoint, Plane, Samples};
+    use crate::visibility::regions::shared_vertex_pixels;
 
     fn piece(poly: u32, corners: &[[i32; 2]]) -> Piece {
         let gp: Vec<GridPoint> = corners
@@ -117,32 +176,44 @@ mod tests {
         Piece::from_convex(poly, support, &gp)
     }
 
+    /// The shared segments as (pieces, ends in grid units, ends sorted).
+    fn shared(pieces: &[Piece], group: impl Fn(usize) -> u32) -> Vec<([usize; 2], [[f64; 2]; 2])> {
+        // A 2^23-pixel-wide image makes pixels and grid units the same up to an offset.
+        let s = Samples::new(1 << 23, 1 << 23);
+        let vertices = shared_vertex_pixels(pieces, &s);
+        let grid = |[c, r]: [f64; 2]| [c - (1 << 22) as f64, (1 << 22) as f64 - r];
+        let mut out: Vec<_> = shared_edges(pieces, &vertices, group)
+            .into_iter()
+            .map(|e| {
+                let mut ends = e.ends.map(grid);
+                ends.sort_by(|x, y| x.partial_cmp(y).unwrap());
+                (e.pieces, ends)
+            })
+            .collect();
+        out.sort_by(|x, y| x.partial_cmp(y).unwrap());
+        out
+    }
+
     #[test]
-    fn abutting_squares_share_their_common_edge_and_a_t_junction_part() {
-        // a: [0,4]x[0,4]; b: [4,8]x[0,4] shares the whole edge x = 4; c: [4,8]x[4,6] touches a
-        // only at the corner (4,4); d: [-4,0]x[2,6] shares x = 0 for y in [2,4] (a T-junction).
+    fn abutting_pieces_share_whole_edges_t_junction_parts_and_never_a_corner() {
+        // a: [0,4]x[0,4]; b: [4,8]x[0,4] shares the whole edge x = 4 (its bottom edge lies on
+        // a's bottom line too, on the same side: not shared); c: [4,8]x[4,6] touches a only at
+        // the corner (4,4) and shares y = 4 with b whole; d: [-4,0]x[2,6] shares x = 0 for y in
+        // [2,4] with a (a T-junction, found exactly).
         let pieces = [
             piece(0, &[[0, 0], [4, 0], [4, 4], [0, 4]]),
             piece(1, &[[4, 0], [8, 0], [8, 4], [4, 4]]),
             piece(2, &[[4, 4], [8, 4], [8, 6], [4, 6]]),
             piece(3, &[[-4, 2], [0, 2], [0, 6], [-4, 6]]),
         ];
-        let seg = |a: &Piece, b: &Piece| {
-            common_segment(a, b).map(|[p, q]| {
-                let mut e = [p, q];
-                e.sort_by(|x, y| x.partial_cmp(y).unwrap());
-                e
-            })
-        };
-        assert_eq!(seg(&pieces[0], &pieces[1]), Some([[4.0, 0.0], [4.0, 4.0]]));
         assert_eq!(
-            seg(&pieces[0], &pieces[2]),
-            None,
-            "a corner is not a segment"
+            shared(&pieces, |i| i as u32),
+            vec![
+                ([0, 1], [[4.0, 0.0], [4.0, 4.0]]),
+                ([0, 3], [[0.0, 2.0], [0.0, 4.0]]),
+                ([1, 2], [[4.0, 4.0], [8.0, 4.0]]),
+            ]
         );
-        assert_eq!(seg(&pieces[0], &pieces[3]), Some([[0.0, 2.0], [0.0, 4.0]]));
-        assert_eq!(seg(&pieces[1], &pieces[2]), Some([[4.0, 4.0], [8.0, 4.0]]));
-        assert_eq!(seg(&pieces[1], &pieces[3]), None, "apart");
     }
 
     #[test]
@@ -151,15 +222,24 @@ mod tests {
             piece(0, &[[0, 0], [4, 0], [4, 4], [0, 4]]),
             piece(1, &[[4, 0], [8, 0], [8, 4], [4, 4]]),
         ];
-        let s = Samples::new(16, 16);
-        assert!(shared_edges(&pieces, |_| 7, &s).is_empty());
-        let e = shared_edges(&pieces, |i| i as u32, &s);
-        assert_eq!(e.len(), 1);
-        assert_eq!(e[0].pieces, [0, 1]);
-        let x = s.col_of(4.0);
-        let mut ys = [e[0].ends[0][1], e[0].ends[1][1]];
-        ys.sort_by(f64::total_cmp);
-        assert_eq!(e[0].ends.map(|p| p[0]), [x, x]);
-        assert_eq!(ys, [s.row_of(4.0), s.row_of(0.0)]);
+        assert!(shared(&pieces, |_| 7).is_empty());
+        assert_eq!(
+            shared(&pieces, |i| i as u32),
+            vec![([0, 1], [[4.0, 0.0], [4.0, 4.0]])]
+        );
+    }
+
+    #[test]
+    fn a_partly_shared_edge_beside_a_collinear_edge_on_the_same_side_is_found() {
+        // b's bottom edge lies on a's bottom line (same side, touching at (4,0)) before the
+        // edge they share: the search goes on past it. b is shorter than a's right edge.
+        let pieces = [
+            piece(0, &[[0, 0], [4, 0], [4, 4], [0, 4]]),
+            piece(1, &[[4, 0], [8, 0], [8, 2], [4, 2]]),
+        ];
+        assert_eq!(
+            shared(&pieces, |i| i as u32),
+            vec![([0, 1], [[4.0, 0.0], [4.0, 2.0]])]
+        );
     }
 }
