@@ -109,6 +109,17 @@ impl Camera {
     /// Checks that the camera defines a proper view volume.
     pub fn validate(&self) -> Result<(), Error> {
         let bad = |m: String| Err(Error::Camera(m));
+        // First: a zero side gives a zero aspect, and whatever was fitted with it is infinite.
+        if self.width == 0
+            || self.height == 0
+            || self.width > MAX_IMAGE_SIDE
+            || self.height > MAX_IMAGE_SIDE
+        {
+            return bad(format!(
+                "image size {}x{} must be between 1 and {MAX_IMAGE_SIDE} on each side",
+                self.width, self.height
+            ));
+        }
         for (name, v) in [("eye", self.eye), ("target", self.target), ("up", self.up)] {
             if !v.is_finite() {
                 return bad(format!("camera {name} is not finite: {v}"));
@@ -143,16 +154,6 @@ impl Camera {
                     return bad(format!("orthographic height must be > 0 (got {height})"));
                 }
             }
-        }
-        if self.width == 0
-            || self.height == 0
-            || self.width > MAX_IMAGE_SIDE
-            || self.height > MAX_IMAGE_SIDE
-        {
-            return bad(format!(
-                "image size {}x{} must be between 1 and {MAX_IMAGE_SIDE} on each side",
-                self.width, self.height
-            ));
         }
         Ok(())
     }

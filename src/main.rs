@@ -459,10 +459,13 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("expected WxH, e.g. 1024x768, got '{s}'"))?;
+    use sightline::camera::MAX_IMAGE_SIDE;
     let p = |t: &str| {
         t.trim()
             .parse::<u32>()
-            .map_err(|_| format!("'{t}' is not a positive integer"))
+            .ok()
+            .filter(|v| (1..=MAX_IMAGE_SIDE).contains(v))
+            .ok_or_else(|| format!("'{t}' is not an image side in 1..={MAX_IMAGE_SIDE}"))
     };
     Ok((p(w)?, p(h)?))
 }
@@ -706,6 +709,17 @@ fn refuses_binary_output(format: OutputFormat, output: &Path, stdout_is_terminal
     format == OutputFormat::Png && output.as_os_str() == "-" && stdout_is_terminal
 }
 
+/// Is `path` a terminal (`/dev/tty`, `/dev/stdout` on one)? Only character devices are opened
+/// to ask: opening a FIFO to write would wait for its reader.
+fn is_terminal_path(path: &Path) -> bool {
+    use std::os::unix::fs::FileTypeExt;
+    std::fs::metadata(path).is_ok_and(|m| m.file_type().is_char_device())
+        && std::fs::OpenOptions::new()
+            .write(true)
+            .open(path)
+            .is_ok_and(|f| f.is_terminal())
+}
+
 /// The first flag given that this output would ignore, with why; `None` when all apply.
 fn ignored_flag(a: &RenderArgs, format: OutputFormat) -> Option<String> {
     let name = |f: OutputFormat| match f {
@@ -787,7 +801,9 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
         OutputFormat::Png => Method::Zbuffer,
         OutputFormat::Svg | OutputFormat::Json => Method::Bsp,
     });
-    if refuses_binary_output(format, &a.output, std::io::stdout().is_terminal()) {
+    if refuses_binary_output(format, &a.output, std::io::stdout().is_terminal())
+        || (format == OutputFormat::Png && is_terminal_path(&a.output))
+    {
         return Err(sightline::Error::Output(
             "not writing a binary PNG to a terminal: redirect standard output (-o - > out.png), or give a file (-o out.png)".into(),
         ));

@@ -752,7 +752,7 @@ fn every_shared_cam_file_loads() {
 fn negative_values_reach_each_flags_range_check() {
     // Every case fails before rendering: no --size needed (the --size case tests it).
     let render = ["render", "fixtures/cube.obj", "-o", "-"];
-    let cases: [(&[&str], &str); 12] = [
+    let cases: [(&[&str], &str); 13] = [
         (&["--fov", "-40"], "--fov must be in (0, 180)"),
         (&["--fov=-40"], "--fov must be in (0, 180)"),
         (&["--fov", "0"], "--fov must be in (0, 180)"),
@@ -765,7 +765,11 @@ fn negative_values_reach_each_flags_range_check() {
             &["--near", "3", "--far", "2"],
             "--near must be less than --far",
         ),
-        (&["--size", "-3x4"], "'-3' is not a positive integer"),
+        (
+            &["--size", "-3x4"],
+            "'-3' is not an image side in 1..=16384",
+        ),
+        (&["--size", "0x10"], "'0' is not an image side in 1..=16384"),
         (&["--background", "-1,0,0"], "'-1' is not in 0..=255"),
         (&["--light", "-1,0"], "three numbers"),
     ];
@@ -918,6 +922,17 @@ fn png_is_not_written_onto_a_terminal() {
         "{text}"
     );
     assert!(!text.contains("PNG\r\n\u{1a}"), "no PNG bytes: {text}");
+    // Named as a path, the terminal is refused too.
+    let o = script(&format!(
+        "{bin} render fixtures/cube.obj --size 8x8 --to png -o /dev/stdout"
+    ))
+    .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(!o.status.success(), "{text}");
+    assert!(
+        text.contains("not writing a binary PNG to a terminal"),
+        "{text}"
+    );
     let o = script(&format!(
         "{bin} render fixtures/cube.obj --size 8x8 --to svg -o -"
     ))

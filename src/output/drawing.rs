@@ -43,8 +43,9 @@ pub struct Drawing {
 /// in the colour of one of them under every fill, and clipped to the outline of the opaque
 /// items. Where two fills' anti-aliased edges each cover part of a pixel, the strokes fill
 /// what they leave, so no background shows through ("conflation"); the fills themselves keep
-/// the exact boundaries. The clip keeps the strokes off the silhouette and off translucent
-/// items (a stroke along a sliver face at the silhouette would otherwise widen it).
+/// the exact boundaries. The clip keeps the strokes inside the opaque items: off the silhouette
+/// and off translucent items over the background (a stroke along a sliver face at the
+/// silhouette would otherwise widen it).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Seams {
     /// Rings of the union of the opaque items (even-odd), pixels, y down: the strokes' clip.
