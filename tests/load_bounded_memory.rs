@@ -90,4 +90,36 @@ fn gzipped_obj_of_comments_loads_in_bounded_memory() {
         peak < LIMIT_MB * MB,
         "peak heap {peak} bytes while loading, limit {LIMIT_MB} MB"
     );
+
+    // One line of 256 MB: refused at the line cap (16 MiB), naming the file and the line,
+    // without holding the line (in this same test: nothing else allocates meanwhile).
+    let path = dir.path().join("one_line.obj.gz");
+    {
+        let file = std::fs::File::create(&path).unwrap();
+        let mut gz = GzEncoder::new(BufWriter::new(file), Compression::fast());
+        gz.write_all(b"v 0 0 0\n#").unwrap();
+        let block = "comment ".repeat(MB / 8);
+        for _ in 0..TEXT_MB * MB / block.len() {
+            gz.write_all(block.as_bytes()).unwrap();
+        }
+        gz.finish().unwrap().flush().unwrap();
+    }
+    let before = CURRENT.load(Relaxed);
+    PEAK.store(before, Relaxed);
+    let err = sightline::scene::load(&path, None)
+        .err()
+        .expect("a 256 MB line is refused")
+        .to_string();
+    let peak = PEAK.load(Relaxed) - before;
+    eprintln!(
+        "peak heap while refusing one {TEXT_MB} MB line: {:.1} MB",
+        peak as f64 / MB as f64
+    );
+    assert!(err.contains("one_line.obj.gz"), "{err}");
+    assert!(err.contains("line 2 is longer than 16 MiB"), "{err}");
+    assert!(
+        peak < 2 * LIMIT_MB * MB,
+        "peak heap {peak} bytes for one long line, limit {} MB",
+        2 * LIMIT_MB
+    );
 }

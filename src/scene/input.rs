@@ -17,6 +17,10 @@ pub(crate) const BOM: &[u8] = b"\xEF\xBB\xBF";
 /// Size of the read buffer: large enough that reading costs little next to parsing.
 const BUFFER: usize = 1 << 20;
 
+/// The longest line a text format may have. No mesh line comes near it; a longer one (a file
+/// that is not text, or a comment of gigabytes) is an error rather than a line held whole.
+pub(crate) const MAX_LINE: usize = 16 << 20;
+
 /// The data, read through a buffer of its own (so that reading a value or finding a line end is
 /// an inlined slice operation, whatever the reader behind it).
 pub(crate) struct Input<R> {
@@ -32,6 +36,8 @@ pub(crate) struct Input<R> {
     len: Option<u64>,
     error: Option<io::Error>,
     eof: bool,
+    /// Lines returned by [`Input::line`] so far.
+    lines: u64,
 }
 
 impl<R: Read> Input<R> {
@@ -48,6 +54,7 @@ impl<R: Read> Input<R> {
             len,
             error: None,
             eof: false,
+            lines: 0,
         }
     }
 
@@ -118,9 +125,11 @@ impl<R: Read> Input<R> {
     }
 
     /// Reads the next physical line into `out` (cleared first), without its `\n` and a `\r`
-    /// before it; the first line loses a leading BOM. False at the end of the data.
+    /// before it; the first line loses a leading BOM. False at the end of the data, and after a
+    /// line longer than [`MAX_LINE`] (an error for [`Input::finish`]).
     pub(crate) fn line(&mut self, out: &mut Vec<u8>) -> bool {
         out.clear();
+        self.lines += 1;
         let first = self.pos() == 0;
         let mut any = false;
         loop {
@@ -143,6 +152,16 @@ impl<R: Read> Input<R> {
             let n = avail.len();
             out.extend_from_slice(avail);
             self.consume(n);
+            if out.len() > MAX_LINE {
+                let message = format!(
+                    "line {} is longer than {} MiB: not a mesh text file",
+                    self.lines,
+                    MAX_LINE >> 20
+                );
+                self.fail(io::Error::new(io::ErrorKind::InvalidData, message));
+                out.clear();
+                return false;
+            }
         }
         if first && out.starts_with(BOM) {
             out.drain(..BOM.len());
