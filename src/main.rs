@@ -29,7 +29,7 @@ use clap::{Args, Parser, Subcommand};
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use sightline::camera::{CamFile, Camera, CameraSpec, NamedView, Projection};
-use sightline::output::{png, write_atomic, write_with};
+use sightline::output::{png, write_with};
 use sightline::pipeline::{self, Fill};
 use sightline::project::CullMode;
 use sightline::scene::{self, Format, Scene};
@@ -1032,7 +1032,9 @@ fn compare(a: CompareArgs) -> sightline::Result<()> {
     );
     if let Some(path) = &a.diff {
         let image = pipeline::diff_image(&reference, &ids);
-        write_atomic(path, &png::encode_rgb(camera.width, camera.height, image)?)?;
+        write_with(path, |w| {
+            png::write_rgb(w, camera.width, camera.height, &image)
+        })?;
     }
     let pct = |n: usize, d: usize| 100.0 * n as f64 / d.max(1) as f64;
     println!(

@@ -4,7 +4,6 @@
 //! Every PNG is encoded alike: fast deflate with adaptive filtering (the `image` crate's
 //! defaults, which these files used before streaming), IDAT chunks of [`CHUNK_BYTES`].
 
-use crate::error::Error;
 use std::io::{self, Write};
 
 /// Compressed bytes per IDAT chunk.
@@ -19,22 +18,15 @@ pub fn write_rgb_rows(
     height: u32,
     rows: impl FnOnce(&mut dyn FnMut(&[[u8; 3]]) -> io::Result<()>) -> io::Result<()>,
 ) -> io::Result<()> {
-    let mut png = header(
-        out,
-        width,
-        height,
-        png::ColorType::Rgb,
-        png::BitDepth::Eight,
-    )?;
-    let mut stream = png.stream_writer_with_size(CHUNK_BYTES).map_err(to_io)?;
     let mut bytes = Vec::new();
-    rows(&mut |pixels| {
-        bytes.clear();
-        bytes.extend(pixels.iter().flatten());
-        stream.write_all(&bytes)
-    })?;
-    stream.finish().map_err(to_io)?;
-    png.finish().map_err(to_io)
+    let format = (png::ColorType::Rgb, png::BitDepth::Eight);
+    write_stream(out, width, height, format, |stream| {
+        rows(&mut |pixels| {
+            bytes.clear();
+            bytes.extend(pixels.iter().flatten());
+            stream.write_all(&bytes)
+        })
+    })
 }
 
 /// Writes row-major RGB pixels (row 0 at the top) as a PNG into `out`.
@@ -58,56 +50,41 @@ pub fn write_depth16(
     depth: &[f64],
 ) -> io::Result<()> {
     check_len(depth.len(), width, height)?;
-    let mut png = header(
-        out,
-        width,
-        height,
-        png::ColorType::Grayscale,
-        png::BitDepth::Sixteen,
-    )?;
-    let mut stream = png.stream_writer_with_size(CHUNK_BYTES).map_err(to_io)?;
     let mut row = Vec::new();
-    for depths in depth.chunks(width.max(1) as usize) {
-        row.clear();
-        row.extend(depths.iter().flat_map(|&d| depth_to_u16(d).to_be_bytes()));
-        stream.write_all(&row)?;
-    }
-    stream.finish().map_err(to_io)?;
-    png.finish().map_err(to_io)
+    let format = (png::ColorType::Grayscale, png::BitDepth::Sixteen);
+    write_stream(out, width, height, format, |stream| {
+        depth.chunks(width.max(1) as usize).try_for_each(|depths| {
+            row.clear();
+            row.extend(depths.iter().flat_map(|&d| depth_to_u16(d).to_be_bytes()));
+            stream.write_all(&row)
+        })
+    })
 }
 
-/// Encodes row-major RGB pixels (row 0 at the top) as PNG bytes.
-pub fn encode_rgb(width: u32, height: u32, pixels: Vec<[u8; 3]>) -> Result<Vec<u8>, Error> {
-    let mut out = Vec::new();
-    write_rgb(&mut out, width, height, &pixels).map_err(encoding_error)?;
-    Ok(out)
-}
-
-/// Encodes normalized depths in [0, 1] as 16-bit grey PNG bytes: `round(depth · 65535)`.
-pub fn encode_depth16(width: u32, height: u32, depth: &[f64]) -> Result<Vec<u8>, Error> {
-    let mut out = Vec::new();
-    write_depth16(&mut out, width, height, depth).map_err(encoding_error)?;
-    Ok(out)
-}
-
-/// A normalized depth as the 16-bit value written to depth PNGs.
-pub fn depth_to_u16(d: f64) -> u16 {
-    (d.clamp(0.0, 1.0) * 65535.0).round() as u16
-}
-
-fn header(
+/// A PNG of this format whose raw (unfiltered) image bytes `data` writes into the stream it is
+/// given, row after row.
+fn write_stream(
     out: &mut dyn Write,
     width: u32,
     height: u32,
-    color: png::ColorType,
-    depth: png::BitDepth,
-) -> io::Result<png::Writer<&mut dyn Write>> {
+    (color, depth): (png::ColorType, png::BitDepth),
+    data: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> io::Result<()> {
     let mut encoder = png::Encoder::new(out, width, height);
     encoder.set_color(color);
     encoder.set_depth(depth);
     encoder.set_compression(png::Compression::Fast);
     encoder.set_filter(png::Filter::Adaptive);
-    encoder.write_header().map_err(to_io)
+    let mut png = encoder.write_header().map_err(to_io)?;
+    let mut stream = png.stream_writer_with_size(CHUNK_BYTES).map_err(to_io)?;
+    data(&mut stream)?;
+    stream.finish().map_err(to_io)?;
+    png.finish().map_err(to_io)
+}
+
+/// A normalized depth as the 16-bit value written to depth PNGs.
+pub fn depth_to_u16(d: f64) -> u16 {
+    (d.clamp(0.0, 1.0) * 65535.0).round() as u16
 }
 
 fn check_len(len: usize, width: u32, height: u32) -> io::Result<()> {
@@ -127,8 +104,4 @@ fn to_io(e: png::EncodingError) -> io::Error {
         png::EncodingError::IoError(e) => e,
         other => io::Error::other(format!("PNG encoding failed: {other}")),
     }
-}
-
-fn encoding_error(e: io::Error) -> Error {
-    Error::Output(e.to_string())
 }
