@@ -631,3 +631,49 @@ fn coplanar_faces_of_one_paint_are_drawn_as_one_region() {
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     assert_eq!(v["faces"].as_array().unwrap().len(), 8);
 }
+
+/// A translucent scene's drawing (the opaque faces' visible set, then the translucent parts in
+/// front of it, back to front) blends to the A-buffer's colours at pixel centres: nothing hidden
+/// behind an opaque face shows, nothing blends twice. Random two-sided triangles, every other
+/// one translucent; a pixel on a region edge may differ (the drawing's vertices are rounded,
+/// the A-buffer samples exactly), under 0.1 %.
+#[test]
+fn translucent_drawings_blend_as_the_abuffer_does() {
+    use sightline::raster::abuffer;
+    use sightline::raster::shade::to_u8;
+    for seed in 1..=4 {
+        let mut scene = support::random_triangles(40, seed);
+        let mut glass = scene.materials[0].clone();
+        glass.transparency = 0.5;
+        glass.diffuse = [0.2, 0.5, 0.9];
+        scene.materials.push(glass);
+        let glass = scene.materials.len() as u32 - 1;
+        for f in scene.faces.iter_mut().step_by(2) {
+            f.material = glass;
+        }
+        let cam = spec_camera(&scene, (160, 120));
+        let screen = prepare(&scene, &cam, CullMode::Auto).screen;
+        let mut drawing = sightline::visibility::BspMethod::default()
+            .run(&scene, &screen, &cam, Fill::Shade)
+            .drawing;
+        assert!(drawing.items.iter().any(|i| i.opacity < 1.0));
+        drawing.background = Some([1.0; 3]);
+        let ours = colors(&drawing);
+        let paints = abuffer::paints(&scene, &screen, &cam, Fill::Shade);
+        let reference = abuffer::render(&screen, &paints, [1.0; 3], abuffer::Options::default());
+        let differ = ours
+            .iter()
+            .zip(&reference.color)
+            .filter(|(a, b)| {
+                let (a, b) = (to_u8(**a), to_u8(**b));
+                (0..3).any(|c| a[c].abs_diff(b[c]) > 2)
+            })
+            .count();
+        // 0 on these seeds; drawing nothing of the translucent parts' clipping differs on 1.2 %.
+        assert!(
+            differ * 1000 < ours.len(),
+            "seed {seed}: {differ} of {} pixels differ from the A-buffer",
+            ours.len()
+        );
+    }
+}

@@ -117,21 +117,7 @@ impl<'a> Coverage<'a> {
     /// Inserts a piece that nothing already inserted lies behind where they overlap.
     pub fn insert_behind(&mut self, piece: Piece) {
         self.stats.inserted += 1;
-        let near = self.near(&bounds(&piece));
-        let mut parts = vec![piece];
-        for v in near {
-            let front = self.visible[v as usize].as_ref().expect("live");
-            let mut next = Vec::with_capacity(parts.len());
-            for part in parts {
-                self.stats.overlap_tests += 1;
-                subtract(part, front, &mut next);
-            }
-            parts = next;
-            if parts.is_empty() {
-                return;
-            }
-        }
-        for part in parts {
+        for part in self.clipped_by_near(piece, |_, part, front, out| subtract(part, front, out)) {
             let b = bounds(&part);
             self.add(part, b);
         }
@@ -141,6 +127,33 @@ impl<'a> Coverage<'a> {
     /// the tie rule), leaving the map as it is: a translucent fragment over an opaque visible
     /// set.
     pub fn unhidden_parts(&mut self, piece: Piece, out: &mut Vec<Piece>) {
+        out.extend(self.clipped_by_near(piece, |screen, part, front, out| {
+            if separated(&part, front) {
+                out.push(part);
+                return;
+            }
+            // The viewer is on the negative side of `front`'s support plane.
+            match part.split_by_plane(&front.support) {
+                Split::Negative => out.push(part),
+                Split::Positive => subtract(part, front, out),
+                Split::On if tie_key(screen, &part) < tie_key(screen, front) => out.push(part),
+                Split::On => subtract(part, front, out),
+                Split::Both(nearer, farther) => {
+                    out.push(nearer);
+                    subtract(farther, front, out);
+                }
+            }
+        }));
+    }
+
+    /// What is left of `piece` after `clip(screen, part, front, kept)` has kept, of each part
+    /// so far, what one live piece whose bounds meet it leaves; the live pieces in turn, in
+    /// index order. The map is not changed.
+    fn clipped_by_near(
+        &mut self,
+        piece: Piece,
+        clip: impl Fn(&ScreenScene, Piece, &Piece, &mut Vec<Piece>),
+    ) -> Vec<Piece> {
         let near = self.near(&bounds(&piece));
         let mut parts = vec![piece];
         for v in near {
@@ -148,30 +161,14 @@ impl<'a> Coverage<'a> {
             let mut next = Vec::with_capacity(parts.len());
             for part in parts {
                 self.stats.overlap_tests += 1;
-                if separated(&part, front) {
-                    next.push(part);
-                    continue;
-                }
-                // The viewer is on the negative side of `front`'s support plane.
-                match part.split_by_plane(&front.support) {
-                    Split::Negative => next.push(part),
-                    Split::Positive => subtract(part, front, &mut next),
-                    Split::On if tie_key(self.screen, &part) < tie_key(self.screen, front) => {
-                        next.push(part)
-                    }
-                    Split::On => subtract(part, front, &mut next),
-                    Split::Both(nearer, farther) => {
-                        next.push(nearer);
-                        subtract(farther, front, &mut next);
-                    }
-                }
+                clip(self.screen, part, front, &mut next);
             }
             parts = next;
             if parts.is_empty() {
-                return;
+                break;
             }
         }
-        out.append(&mut parts);
+        parts
     }
 
     /// Inserts a piece in any order: see the module docs.
