@@ -514,6 +514,12 @@ fn parse_rgb(s: &str) -> Result<[u8; 3], String> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // Interrupted (Ctrl-C, SIGTERM, SIGHUP) while an output is written: leave no temporary file
+    // beside it. The handler runs on a thread of its own, not in the signal's context.
+    let _ = ctrlc::set_handler(|| {
+        sightline::output::remove_unfinished_outputs();
+        std::process::exit(130);
+    });
     let result = match cli.command {
         Command::Render(a) => render(a),
         Command::Info(a) => info(a),

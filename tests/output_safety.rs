@@ -217,3 +217,52 @@ fn a_directory_is_an_error_and_stays_a_directory() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("out.png"));
     assert!(fs::metadata(&sub).unwrap().is_dir());
 }
+
+/// An interrupted render (SIGTERM, as Ctrl-C's SIGINT) leaves neither its temporary file nor a
+/// partial output: a drawing's PNG is rasterized while it streams into the temporary file, so
+/// the render is stopped while that file exists. An old output stays as it was.
+#[test]
+fn an_interrupted_render_leaves_no_temporary_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("big.png");
+    fs::write(&out, b"old").unwrap();
+    let mut child = Command::new(BIN)
+        .args([
+            "render",
+            "fixtures/cube.obj",
+            "--method",
+            "bsp",
+            "--size",
+            "16384x16384",
+            "-o",
+        ])
+        .arg(&out)
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("binary runs");
+    // Wait for the temporary file (the render takes seconds after it appears).
+    let temporary = || {
+        names(dir.path())
+            .iter()
+            .any(|n| n.starts_with(".sightline-"))
+    };
+    let mut waited = Duration::ZERO;
+    while !temporary() && waited < Duration::from_secs(30) {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the render ended early"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+        waited += Duration::from_millis(20);
+    }
+    assert!(temporary(), "the temporary file appeared");
+    let killed = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let status = child.wait().unwrap();
+    assert!(!status.success());
+    assert_eq!(names(dir.path()), vec!["big.png".to_string()]);
+    assert_eq!(fs::read(&out).unwrap(), b"old");
+}

@@ -12,6 +12,10 @@
 //!   its target.
 //! - Anything else (FIFO, character device, socket, `/dev/stdout`, links through `/proc`):
 //!   opened and written in place, never renamed over.
+//!
+//! A temporary file lives as long as its output is being written (a drawing's PNG is
+//! rasterized while it streams out): a program interrupted meanwhile calls
+//! [`remove_unfinished_outputs`] before it exits, so that nothing is left beside the target.
 
 pub mod drawing;
 pub mod json;
@@ -24,6 +28,39 @@ use std::fs::{File, Metadata, OpenOptions, Permissions};
 use std::io::{self, BufWriter, Write};
 use std::os::unix::fs::{MetadataExt, PermissionsExt};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// The temporary files being written now.
+static UNFINISHED: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Removes the temporary files of the outputs being written (for an interrupt handler: the
+/// targets stay as they were).
+pub fn remove_unfinished_outputs() {
+    let paths = UNFINISHED.lock().map(|mut v| std::mem::take(&mut *v));
+    for path in paths.unwrap_or_default() {
+        let _ = std::fs::remove_file(path);
+    }
+}
+
+/// Lists a temporary file in [`UNFINISHED`] while it lives.
+struct Unfinished(PathBuf);
+
+impl Unfinished {
+    fn new(path: &Path) -> Unfinished {
+        if let Ok(mut v) = UNFINISHED.lock() {
+            v.push(path.to_path_buf());
+        }
+        Unfinished(path.to_path_buf())
+    }
+}
+
+impl Drop for Unfinished {
+    fn drop(&mut self) {
+        if let Ok(mut v) = UNFINISHED.lock() {
+            v.retain(|p| *p != self.0);
+        }
+    }
+}
 
 /// Writes `bytes` to `path` by the rules of this module (atomically for regular files), or to
 /// stdout when `path` is `-`.
@@ -126,6 +163,7 @@ fn replace(
         .prefix(".sightline-")
         .permissions(Permissions::from_mode(create_mode))
         .tempfile_in(dir)?;
+    let _listed = Unfinished::new(tmp.path());
     if let Some(old) = old {
         keep_owner_and_mode(tmp.as_file(), old)?;
     }
