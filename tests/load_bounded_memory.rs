@@ -107,8 +107,7 @@ fn gzipped_obj_of_comments_loads_in_bounded_memory() {
     let before = CURRENT.load(Relaxed);
     PEAK.store(before, Relaxed);
     let err = sightline::scene::load(&path, None)
-        .err()
-        .expect("a 256 MB line is refused")
+        .expect_err("a 256 MB line is refused")
         .to_string();
     let peak = PEAK.load(Relaxed) - before;
     eprintln!(
