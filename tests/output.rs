@@ -17,17 +17,6 @@ use sightline::visibility::{Painter, VisibilityMethod, methods};
 use std::path::Path;
 use support::{add_triangle, interior_mismatches, pixel_of};
 
-fn item(face: u32, rings: Vec<Vec<[f64; 2]>>, color: [f64; 3], opacity: f64) -> DrawItem {
-    DrawItem {
-        face,
-        merged: Vec::new(),
-        material: 0,
-        rings,
-        color,
-        opacity,
-    }
-}
-
 fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<[f64; 2]> {
     vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
 }
@@ -39,8 +28,8 @@ fn holed_drawing() -> Drawing {
         height: 12,
         background: Some([1.0, 1.0, 1.0]),
         items: vec![
-            item(3, vec![rect(0.0, 5.0, 12.0, 7.0)], [1.0, 0.0, 0.0], 1.0),
-            item(
+            DrawItem::new(3, vec![rect(0.0, 5.0, 12.0, 7.0)], [1.0, 0.0, 0.0], 1.0),
+            DrawItem::new(
                 8,
                 vec![rect(1.0, 1.0, 11.0, 11.0), rect(4.0, 4.0, 8.0, 8.0)],
                 [0.0, 0.0, 1.0],
@@ -75,7 +64,7 @@ fn svg_keeps_every_digit_of_every_coordinate() {
         width: 2000,
         height: 10,
         background: None,
-        items: vec![item(
+        items: vec![DrawItem::new(
             0,
             vec![vec![[a, 1.0], [b, -0.0], [b, 2.0 / 3.0]]],
             [0.5; 3],
@@ -197,9 +186,9 @@ fn json_parses_back_grouped_by_face_with_materials_and_stats() {
     // Face 5 drawn twice (a split face), face 2 between: grouped, ascending, painter order kept.
     let mut d = holed_drawing();
     d.items = vec![
-        item(5, vec![rect(0.0, 0.0, 1.0, 1.0)], [1.0; 3], 1.0),
-        item(2, vec![rect(-0.0, 1.0, 2.5, 3.0)], [1.0; 3], 1.0),
-        item(
+        DrawItem::new(5, vec![rect(0.0, 0.0, 1.0, 1.0)], [1.0; 3], 1.0),
+        DrawItem::new(2, vec![rect(-0.0, 1.0, 2.5, 3.0)], [1.0; 3], 1.0),
+        DrawItem::new(
             5,
             vec![rect(4.0, 4.0, 6.0, 6.0), rect(4.5, 4.5, 5.5, 5.5)],
             [1.0; 3],

@@ -36,17 +36,6 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static ALLOC: Counting = Counting;
 
-fn item(face: u32, rings: Vec<Vec<[f64; 2]>>, color: [f64; 3], opacity: f64) -> DrawItem {
-    DrawItem {
-        face,
-        merged: Vec::new(),
-        material: 0,
-        rings,
-        color,
-        opacity,
-    }
-}
-
 /// A few faces over a `w` x `h` image: a cube's three visible faces, a translucent triangle over
 /// them and a ring with a hole, some crossing the image border.
 fn few_faces(w: f64, h: f64) -> Drawing {
@@ -57,31 +46,31 @@ fn few_faces(w: f64, h: f64) -> Drawing {
         background: Some([1.0, 1.0, 1.0]),
         seams: Default::default(),
         items: vec![
-            item(
+            DrawItem::new(
                 0,
                 vec![vec![p(0.5, 0.1), p(0.9, 0.3), p(0.5, 0.5), p(0.1, 0.3)]],
                 [0.8, 0.2, 0.2],
                 1.0,
             ),
-            item(
+            DrawItem::new(
                 1,
                 vec![vec![p(0.1, 0.3), p(0.5, 0.5), p(0.5, 0.93), p(0.1, 0.7)]],
                 [0.2, 0.7, 0.2],
                 1.0,
             ),
-            item(
+            DrawItem::new(
                 2,
                 vec![vec![p(0.5, 0.5), p(0.9, 0.3), p(0.9, 0.7), p(0.5, 0.93)]],
                 [0.2, 0.3, 0.9],
                 1.0,
             ),
-            item(
+            DrawItem::new(
                 3,
                 vec![vec![p(-0.2, 0.8), p(0.7, -0.1), p(1.3, 1.2)]],
                 [0.9, 0.9, 0.1],
                 0.4,
             ),
-            item(
+            DrawItem::new(
                 4,
                 vec![
                     vec![p(0.6, 0.6), p(0.97, 0.6), p(0.97, 0.97), p(0.6, 0.97)],

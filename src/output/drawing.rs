@@ -26,6 +26,20 @@ pub struct DrawItem {
     pub opacity: f64,
 }
 
+impl DrawItem {
+    /// A region of one face in material 0, merging no other face.
+    pub fn new(face: FaceId, rings: Vec<Vec<[f64; 2]>>, color: [f64; 3], opacity: f64) -> Self {
+        DrawItem {
+            face,
+            merged: Vec::new(),
+            material: 0,
+            rings,
+            color,
+            opacity,
+        }
+    }
+}
+
 /// A whole picture.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Drawing {

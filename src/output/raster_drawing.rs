@@ -336,17 +336,6 @@ mod tests {
     use super::*;
     use crate::output::drawing::DrawItem;
 
-    fn item(face: FaceId, rings: Vec<Vec<[f64; 2]>>, color: [f64; 3], opacity: f64) -> DrawItem {
-        DrawItem {
-            face,
-            merged: Vec::new(),
-            material: 0,
-            rings,
-            color,
-            opacity,
-        }
-    }
-
     #[test]
     fn half_open_rule_at_centres_on_edges() {
         // A square whose edges pass through pixel centres: x in [1.5, 3.5), y in (1.5, 3.5].
@@ -354,7 +343,7 @@ mod tests {
             width: 5,
             height: 5,
             background: None,
-            items: vec![item(
+            items: vec![DrawItem::new(
                 7,
                 vec![vec![[1.5, 1.5], [3.5, 1.5], [3.5, 3.5], [1.5, 3.5]]],
                 [1.0; 3],
@@ -375,7 +364,7 @@ mod tests {
         // Two triangles sharing a diagonal through pixel centres.
         let a = vec![vec![[0.0, 0.0], [8.0, 0.0], [0.0, 8.0]]];
         let b = vec![vec![[8.0, 0.0], [8.0, 8.0], [0.0, 8.0]]];
-        let mk = |rings, c: [f64; 3]| item(0, rings, c, 0.5);
+        let mk = |rings, c: [f64; 3]| DrawItem::new(0, rings, c, 0.5);
         let d = Drawing {
             width: 8,
             height: 8,
@@ -427,7 +416,7 @@ mod tests {
                             .collect()
                     })
                     .collect();
-                item(k as FaceId, rings, [rnd(0.0, 1.0); 3], rnd(0.0, 1.0))
+                DrawItem::new(k as FaceId, rings, [rnd(0.0, 1.0); 3], rnd(0.0, 1.0))
             })
             .collect();
         let d = Drawing {
@@ -465,7 +454,7 @@ mod tests {
             width: 4,
             height: 3,
             background: Some([0.25; 3]),
-            items: vec![item(
+            items: vec![DrawItem::new(
                 1,
                 vec![vec![
                     [-100.0, -50.0],
