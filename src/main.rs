@@ -681,6 +681,19 @@ fn check_camera_flags(args: &CameraArgs, cam_file: Option<&CamFile>) -> sightlin
             "--near must be less than --far (near {n}, far {f})"
         ));
     }
+    // An orthographic camera file may put its near plane behind the eye; made perspective by
+    // --fov, it needs a near plane in front.
+    if let (Some(file), Some(path)) = (cam_file, &args.cam)
+        && perspective
+        && args.near.is_none()
+        && file.near <= 0.0
+    {
+        return bad(format!(
+            "{}: near {} is not > 0: --fov makes the camera perspective, which needs a near plane in front of the eye (give --near)",
+            path.display(),
+            file.near
+        ));
+    }
     Ok(())
 }
 

@@ -717,6 +717,34 @@ fn cam_file_errors_name_file_and_line() {
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(String::from_utf8_lossy(&o.stdout).contains("orthographic, height 6"));
+    // An orthographic file may put its near plane behind the eye; --fov makes it perspective,
+    // and the file's near is then the error, named with the file.
+    let ortho = dir.path().join("ortho.cam");
+    std::fs::write(
+        &ortho,
+        "eye 0 0 5\ntarget 0 0 0\nup 0 1 0\nfovy 0\northo_height 3\nnear -5\nfar 10\n",
+    )
+    .unwrap();
+    let cam = ortho.to_str().unwrap();
+    assert!(
+        sightline(&["info", "fixtures/cube.obj", "--cam", cam])
+            .status
+            .success()
+    );
+    let (code, err) = run_err(&["info", "fixtures/cube.obj", "--cam", cam, "--fov", "30"]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains("ortho.cam: near -5 is not > 0"), "{err}");
+    let o = sightline(&[
+        "info",
+        "fixtures/cube.obj",
+        "--cam",
+        cam,
+        "--fov",
+        "30",
+        "--near",
+        "1",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 /// Every camera file of the shared benchmark meshes loads and makes a valid camera.
