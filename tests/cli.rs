@@ -1164,3 +1164,58 @@ fn progress_is_silent_when_stderr_is_not_a_terminal() {
         );
     }
 }
+
+/// The other half of point 9: on a terminal, the long stages show labelled bars. The binary
+/// runs under `script` (a pseudo-terminal) on a generated grid of 20,000 triangles.
+#[test]
+fn progress_bars_are_labelled_on_a_terminal() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("grid.obj");
+    let n = 100;
+    let mut text = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            // A wavy surface: faces of many planes, nothing merges.
+            let z = ((i * 7 + j * 13) % 5) as f64 * 0.01;
+            text.push_str(&format!("v {i} {j} {z}\n"));
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let v = |i: usize, j: usize| j * (n + 1) + i + 1;
+            text.push_str(&format!(
+                "f {} {} {}\n",
+                v(i, j),
+                v(i + 1, j),
+                v(i + 1, j + 1)
+            ));
+            text.push_str(&format!(
+                "f {} {} {}\n",
+                v(i, j),
+                v(i + 1, j + 1),
+                v(i, j + 1)
+            ));
+        }
+    }
+    std::fs::write(&mesh, text).unwrap();
+    let out = dir.path().join("grid.svg");
+    let cmd = format!(
+        "{} render {} -o {}",
+        env!("CARGO_BIN_EXE_sightline"),
+        mesh.display(),
+        out.display()
+    );
+    let Ok(o) = Command::new("script")
+        .args(["-qec", &cmd, "/dev/null"])
+        .output()
+    else {
+        println!("`script` is not installed: bars on a terminal not checked");
+        return;
+    };
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stdout));
+    let shown = String::from_utf8_lossy(&o.stdout);
+    for label in ["loading", "visible set", "regions"] {
+        assert!(shown.contains(label), "no '{label}' bar: {shown:?}");
+    }
+    assert!(std::fs::read_to_string(&out).unwrap().contains("<path"));
+}
