@@ -10,8 +10,10 @@
 //!   triangles gave 7,100 fragments, 1,000 gave 3.1 million), while the coverage map only makes
 //!   the splits the visible result has (818 and 7,287 pieces), and it is about twice as fast on
 //!   closed meshes too.
-//! - **Translucent scenes** ([`Bsp::back_to_front`]): blending needs every fragment in depth
-//!   order. A 3D BSP tree is built with the pieces' support planes as splitters; a piece that
+//! - **Translucent scenes** ([`layers`]): the opaque faces' visible set as above, then the
+//!   translucent faces' fragments in depth order ([`Bsp::back_to_front`]), each cut to its parts
+//!   that no opaque face hides ([`Coverage::unhidden_parts`]), to blend over it. A 3D BSP tree is
+//!   built with the pieces' support planes as splitters; a piece that
 //!   straddles a splitter is split exactly (interpenetration and cyclic overlap resolve here).
 //!   After perspective the view is orthographic along +z, so for every support plane (c > 0) the
 //!   viewer is on its negative side: negative subtree, the node's own pieces, positive subtree
