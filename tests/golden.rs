@@ -1,0 +1,75 @@
+//! Golden files: the outputs of a few renders, byte for byte (`tests/golden/`). The same input
+//! and flags give the same bytes on every run and every machine (timings go to `--stats` only,
+//! coordinates are written with shortest round-trip digits, PNGs by one encoder setting), and
+//! an output changes only when a commit says why.
+//!
+//! After a deliberate change of output, rewrite them and look at the difference:
+//! `SIGHTLINE_BLESS=1 cargo test --release --test golden`, then `git diff --stat tests/golden`.
+
+use std::path::Path;
+use std::process::Command;
+
+/// (golden file, input, extra flags). Small images keep the files small.
+const CASES: &[(&str, &str, &[&str])] = &[
+    ("cube.svg", "fixtures/cube.obj", &[]),
+    ("cube.json", "fixtures/cube.obj", &[]),
+    ("cube_zbuffer.png", "fixtures/cube.obj", &[]),
+    (
+        "cyclic_bars_bsp.png",
+        "fixtures/cyclic_bars.obj",
+        &["--method", "bsp"],
+    ),
+    ("interpenetrating.svg", "fixtures/interpenetrating.obj", &[]),
+    ("seed_transparent.svg", "fixtures/seed_transparent.x3d", &[]),
+    (
+        "seed_transparent_abuffer.png",
+        "fixtures/seed_transparent.x3d",
+        &["--method", "abuffer"],
+    ),
+    (
+        "primitives_ids.png",
+        "fixtures/primitives.x3d",
+        &["--fill", "id"],
+    ),
+];
+
+#[test]
+fn outputs_match_their_golden_files() {
+    let bless = std::env::var_os("SIGHTLINE_BLESS").is_some();
+    let dir = tempfile::tempdir().unwrap();
+    let mut changed = Vec::new();
+    for (name, input, extra) in CASES {
+        let out = dir.path().join(name);
+        let o = Command::new(env!("CARGO_BIN_EXE_sightline"))
+            .args(["render", input, "--size", "96x72", "-o"])
+            .arg(&out)
+            .args(*extra)
+            .output()
+            .unwrap();
+        assert!(
+            o.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let bytes = std::fs::read(&out).unwrap();
+        let golden = Path::new("tests/golden").join(name);
+        if bless {
+            std::fs::write(&golden, &bytes).unwrap();
+            continue;
+        }
+        match std::fs::read(&golden) {
+            Ok(want) if want == bytes => {}
+            _ => {
+                // Keep what this build wrote, to compare by hand.
+                let kept = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+                std::fs::write(&kept, &bytes).unwrap();
+                changed.push(format!("{name} (this build's output: {})", kept.display()));
+            }
+        }
+    }
+    assert!(
+        changed.is_empty(),
+        "outputs differ from tests/golden: {changed:?}; if the change is meant, run \
+         SIGHTLINE_BLESS=1 cargo test --release --test golden and say why in the commit"
+    );
+}
