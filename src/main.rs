@@ -50,6 +50,7 @@ Examples:
   sightline render bunny.obj --cam bunny.cam -o - > bunny.png
   sightline render part.obj --stroke --light -1,2,1 --specular 0.3 -o part.svg
   sightline render part.obj --headlight -o part.png     # the seed's headlight, not key + fill
+  sightline render part.obj --background none -o figure.svg   # no background, for a figure
   sightline render bunny.obj --cam bunny.cam --shading phong --specular 0.3 -o bunny.png
   sightline render glass.x3d --method abuffer -o glass.png
   sightline info mesh.obj --view iso";
