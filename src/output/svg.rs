@@ -62,7 +62,7 @@ pub fn write_svg(drawing: &Drawing, options: &SvgOptions) -> String {
     let mut d = String::new();
     for item in &drawing.items {
         d.clear();
-        write_rings(&mut d, &item.rings);
+        write_rings(&mut d, &item.rings, num);
         let mut path = Path::new()
             .set("d", d.as_str())
             .set("fill", hex(item.color))
@@ -95,12 +95,12 @@ pub const SEAM_WIDTH: f64 = 1.5;
 const SEAM_CLIP_ID: &str = "sightline-opaque";
 
 /// The seams under the fills (see [`Seams`]): the outline of the opaque items as a clip path,
-/// then one path of segments per colour, butt ends. Segment ends are written to a thousandth of
-/// a pixel: they fill gaps under exact boundaries and bound nothing themselves; the outline,
-/// which bounds them, keeps every digit.
+/// then one path of segments per colour, butt ends. Both are written to a thousandth of a pixel:
+/// they fill gaps under exact boundaries and bound no region; a clip a thousandth of a pixel
+/// off the silhouette lets through at most that much of a stroke along it.
 fn seams(seams: &Seams) -> (Definitions, Group) {
     let mut outline = String::new();
-    write_rings(&mut outline, &seams.outline);
+    write_rings(&mut outline, &seams.outline, milli);
     let clip = ClipPath::new()
         .set("id", SEAM_CLIP_ID)
         .add(Path::new().set("d", outline).set("clip-rule", "evenodd"));
@@ -113,14 +113,11 @@ fn seams(seams: &Seams) -> (Definitions, Group) {
     for stroke in &seams.strokes {
         d.clear();
         for [p, q] in &stroke.segments {
-            let _ = write!(
-                d,
-                "M{} {}L{} {}",
-                milli(p[0]),
-                milli(p[1]),
-                milli(q[0]),
-                milli(q[1])
-            );
+            let (p, q) = (p.map(milli), q.map(milli));
+            // Shorter than the rounding: a butt-ended stroke of no length draws nothing.
+            if p != q {
+                let _ = write!(d, "M{} {}L{} {}", p[0], p[1], q[0], q[1]);
+            }
         }
         // vector-effect is not inherited: it goes on every path.
         group.append(
@@ -133,8 +130,8 @@ fn seams(seams: &Seams) -> (Definitions, Group) {
     (Definitions::new().add(clip), group)
 }
 
-/// Path data of closed rings, every coordinate with all its digits ([`num`]).
-fn write_rings(d: &mut String, rings: &[Vec<[f64; 2]>]) {
+/// Path data of closed rings, each coordinate written by `num`.
+fn write_rings(d: &mut String, rings: &[Vec<[f64; 2]>], num: fn(f64) -> String) {
     for ring in rings {
         for (k, p) in ring.iter().enumerate() {
             debug_assert!(p[0].is_finite() && p[1].is_finite());
