@@ -537,12 +537,18 @@ fn main() -> ExitCode {
 }
 
 fn progress_bar(len: u64, what: &str) -> ProgressBar {
+    labelled_bar(len, what, "{pos}/{len}")
+}
+
+/// A bar labelled `what` showing `counts` (an indicatif template part) on a terminal, hidden
+/// otherwise.
+fn labelled_bar(len: u64, what: &str, counts: &str) -> ProgressBar {
     if !std::io::stderr().is_terminal() {
         return ProgressBar::hidden();
     }
     let bar = ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::stderr());
     bar.set_style(
-        ProgressStyle::with_template("{msg:10} [{bar:40}] {pos}/{len} ({elapsed})")
+        ProgressStyle::with_template(&format!("{{msg:10}} [{{bar:40}}] {counts} ({{elapsed}})"))
             .unwrap_or_else(|_| ProgressStyle::default_bar())
             .progress_chars("=> "),
     );
@@ -579,19 +585,8 @@ impl StageBars {
 
 fn load_scene(input: &InputArgs) -> sightline::Result<Scene> {
     // Bytes of the file on disk (compressed for .gz), so the total is known from the start.
-    let bar = if std::io::stderr().is_terminal() {
-        let size = std::fs::metadata(&input.input).map_or(0, |m| m.len());
-        let b = ProgressBar::with_draw_target(Some(size), ProgressDrawTarget::stderr());
-        b.set_style(
-            ProgressStyle::with_template("{msg:10} [{bar:40}] {bytes}/{total_bytes} ({elapsed})")
-                .unwrap_or_else(|_| ProgressStyle::default_bar())
-                .progress_chars("=> "),
-        );
-        b.set_message("loading");
-        b
-    } else {
-        ProgressBar::hidden()
-    };
+    let size = std::fs::metadata(&input.input).map_or(0, |m| m.len());
+    let bar = labelled_bar(size, "loading", "{bytes}/{total_bytes}");
     let scene = scene::load_with_progress(&input.input, input.format, &mut |read, total| {
         bar.set_length(total);
         bar.set_position(read);
