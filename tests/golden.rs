@@ -9,27 +9,90 @@
 use std::path::Path;
 use std::process::Command;
 
-/// (golden file, input, extra flags). Small images keep the files small.
+/// (golden file, input, extra flags). Small images keep the files small. Every method is here
+/// with the outputs it writes, so that a restructuring that changes no output can show it.
 const CASES: &[(&str, &str, &[&str])] = &[
     ("cube.svg", "fixtures/cube.obj", &[]),
     ("cube.json", "fixtures/cube.obj", &[]),
     ("cube_zbuffer.png", "fixtures/cube.obj", &[]),
     (
+        "cube_ids_zbuffer.png",
+        "fixtures/cube.obj",
+        &["--fill", "id"],
+    ),
+    (
         "cyclic_bars_bsp.png",
         "fixtures/cyclic_bars.obj",
         &["--method", "bsp"],
     ),
+    (
+        "cyclic_bars_bsp.svg",
+        "fixtures/cyclic_bars.obj",
+        &["--view", "front"],
+    ),
+    (
+        "cyclic_bars_painter.svg",
+        "fixtures/cyclic_bars.obj",
+        &["--view", "front", "--method", "painter"],
+    ),
+    (
+        "cyclic_bars_painter.json",
+        "fixtures/cyclic_bars.obj",
+        &["--view", "front", "--method", "painter"],
+    ),
     ("interpenetrating.svg", "fixtures/interpenetrating.obj", &[]),
+    (
+        "interpenetrating.json",
+        "fixtures/interpenetrating.obj",
+        &[],
+    ),
+    ("t_junction.svg", "fixtures/t_junction.obj", &[]),
+    (
+        "two_objects_painter.png",
+        "fixtures/two_objects.obj",
+        &["--method", "painter"],
+    ),
     ("seed_transparent.svg", "fixtures/seed_transparent.x3d", &[]),
+    (
+        "seed_transparent.json",
+        "fixtures/seed_transparent.x3d",
+        &[],
+    ),
     (
         "seed_transparent_abuffer.png",
         "fixtures/seed_transparent.x3d",
         &["--method", "abuffer"],
     ),
     (
+        "seed_two_triangles_scanline.png",
+        "fixtures/seed_two_triangles.x3d",
+        &["--method", "scanline"],
+    ),
+    (
         "primitives_ids.png",
         "fixtures/primitives.x3d",
         &["--fill", "id"],
+    ),
+    (
+        "primitives_warnock.png",
+        "fixtures/primitives.x3d",
+        &["--method", "warnock"],
+    ),
+    (
+        "primitives_phong.png",
+        "fixtures/primitives.x3d",
+        &["--shading", "phong", "--specular", "0.4"],
+    ),
+    (
+        "primitives_gouraud_scanline.png",
+        "fixtures/primitives.x3d",
+        &["--method", "scanline", "--shading", "gouraud"],
+    ),
+    ("checker_quad_zbuffer.png", "fixtures/checker_quad.obj", &[]),
+    (
+        "indexed_headlight.svg",
+        "fixtures/indexed.x3d",
+        &["--headlight"],
     ),
 ];
 
