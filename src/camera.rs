@@ -5,7 +5,7 @@
 //! - The projection is gluPerspective(fovy, aspect, near, far) or glOrtho(-h·aspect/2, h·aspect/2,
 //!   -h/2, h/2, near, far), aspect = width / height. Clip space is OpenGL's: a point is inside when
 //!   -w <= x, y, z <= w; NDC z is -1 at the near plane and +1 at the far plane.
-//! - NDC [-1,1]² maps to the image [0,W] x [0,H] with y growing downward: pixel (i, j) has its
+//! - NDC \[-1,1\]² maps to the image \[0,W\] x \[0,H\] with y growing downward: pixel (i, j) has its
 //!   centre at x = i + 0.5, y = j + 0.5, which is NDC ((2i+1)/W - 1, 1 - (2j+1)/H).
 //!
 //! A `Camera` is valid (see [`Camera::validate`]) before any projection uses it.

@@ -12,6 +12,7 @@ pub use scene::{Face, FaceId, Material, Mesh, Scene, load};
 pub mod camera;
 pub mod exact;
 pub mod output;
+pub mod paint;
 pub mod pipeline;
 pub mod progress;
 pub mod project;

@@ -494,7 +494,7 @@ fn background_of(flag: Option<BackgroundArg>, scene: &Scene) -> Option<[u8; 3]> 
         None => Some(
             scene
                 .background
-                .map(sightline::raster::shade::to_u8)
+                .map(sightline::paint::to_u8)
                 .unwrap_or([255; 3]),
         ),
     }
@@ -914,10 +914,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             );
         }
         let image = match r.blended {
-            Some(colors) => colors
-                .into_iter()
-                .map(sightline::raster::shade::to_u8)
-                .collect(),
+            Some(colors) => colors.into_iter().map(sightline::paint::to_u8).collect(),
             // Per-pixel lighting or textures: the ray through each pixel centre.
             None if a.fill == Fill::Shade && (a.shading != ShadingArg::Flat || textured) => {
                 let textures = lighting::Textures::load(&scene);
@@ -936,7 +933,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
                     background_rgb.map(|c| c as f64 / 255.0),
                 )
                 .into_iter()
-                .map(sightline::raster::shade::to_u8)
+                .map(sightline::paint::to_u8)
                 .collect()
             }
             None => pipeline::colorize_polys(

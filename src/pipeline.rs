@@ -2,21 +2,13 @@
 //! The CLI, the tests and the benchmarks all go through here, so they run the same code.
 
 use crate::camera::Camera;
+use crate::paint::{face_paint, to_u8};
 use crate::project::{CullMode, ScreenScene, project};
-use crate::raster::shade::{face_paint, to_u8};
 use crate::raster::{EMPTY, ZBuffer, zbuffer};
 use crate::scene::Scene;
 use crate::scene::analysis::{SceneAnalysis, analyse};
 
-/// How pixels are coloured.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
-pub enum Fill {
-    /// Flat shading under the scene's lights (by default the camera's key and fill lights).
-    #[default]
-    Shade,
-    /// Face id + 1 as 24-bit RGB on black: the contract used to compare methods.
-    Id,
-}
+pub use crate::paint::Fill;
 
 /// A scene seen by a camera: analysed, projected, culled.
 pub struct Prepared {

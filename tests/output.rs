@@ -628,8 +628,8 @@ fn coplanar_faces_of_one_paint_are_drawn_as_one_region() {
 /// the A-buffer samples exactly), under 0.1 %.
 #[test]
 fn translucent_drawings_blend_as_the_abuffer_does() {
+    use sightline::paint::to_u8;
     use sightline::raster::abuffer;
-    use sightline::raster::shade::to_u8;
     for seed in 1..=4 {
         let mut scene = support::random_triangles(40, seed);
         let mut glass = scene.materials[0].clone();

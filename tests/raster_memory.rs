@@ -8,7 +8,7 @@ use sightline::output::drawing::{DrawItem, Drawing};
 use sightline::output::raster_drawing::{
     color_strips, colors, face_id_strips, face_ids, write_png,
 };
-use sightline::raster::shade::to_u8;
+use sightline::paint::to_u8;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 

@@ -3,15 +3,14 @@
 
 use glam::DVec3;
 use sightline::camera::{Camera, Projection};
+use sightline::paint::lighting::{FILL, KEY, Light, Lighting};
+use sightline::paint::{flat_color, to_u8};
 use sightline::pipeline::render_zbuffer;
 use sightline::project::CullMode;
 use sightline::raster::interpolate::{
     hit_face, perspective_correct, perspective_depth, perspective_weights, screen_weights,
 };
-use sightline::raster::lighting::{
-    FILL, KEY, Light, Lighting, Shading, Textures, shade_zbuffer, vertex_normals,
-};
-use sightline::raster::shade::{flat_color, to_u8};
+use sightline::raster::lighting::{Shading, Textures, shade_zbuffer, vertex_normals};
 use sightline::raster::texture::{Mipmap, level_of_detail};
 use sightline::scene::CameraLights;
 use sightline::scene::primitives::sphere_scene;

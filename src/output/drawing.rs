@@ -1,6 +1,6 @@
 //! The drawable form of a visibility result: filled regions in image coordinates, back to front.
 //!
-//! Coordinates are pixels with y growing downward (NDC [-1,1]² maps to [0,W] x [0,H]), rounded
+//! Coordinates are pixels with y growing downward (NDC \[-1,1\]² maps to \[0,W\] x \[0,H\]), rounded
 //! once from the exact result: the output-rounding approximation of the exactness contract.
 //! Items are in painter order: an item is drawn over every item before it. Rings of one item are
 //! filled with the even-odd rule (outer boundaries and holes alike). Seams are painted under every
@@ -20,7 +20,7 @@ pub struct DrawItem {
     pub material: u32,
     /// Closed rings (the last point is not repeated), pixels, y down; even-odd fill.
     pub rings: Vec<Vec<[f64; 2]>>,
-    /// Fill colour, linear RGB in [0,1].
+    /// Fill colour, linear RGB in \[0,1\].
     pub color: [f64; 3],
     /// 1 - transparency.
     pub opacity: f64,
@@ -77,7 +77,7 @@ impl Seams {
 /// Shared boundary segments stroked in one colour.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SeamStroke {
-    /// Stroke colour, linear RGB in [0,1]: the colour of one of the two items.
+    /// Stroke colour, linear RGB in \[0,1\]: the colour of one of the two items.
     pub color: [f64; 3],
     /// Segments, pixels, y down.
     pub segments: Vec<[[f64; 2]; 2]>,

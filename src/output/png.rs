@@ -2,7 +2,7 @@
 //! by row into any writer, so an image never needs to be held whole in memory to be encoded.
 //!
 //! Every PNG is encoded alike: fast deflate with adaptive filtering (the `image` crate's
-//! defaults, which these files used before streaming), IDAT chunks of [`CHUNK_BYTES`].
+//! defaults, which these files used before streaming), IDAT chunks of `CHUNK_BYTES`.
 
 use std::io::{self, Write};
 

@@ -18,7 +18,7 @@
 //! pixels outside its rows. [`colors`] touches each pixel once per item covering it (blending
 //! needs every layer); [`face_ids`] walks items front to back and writes each pixel once.
 //!
-//! Memory: rows are rasterized in strips of about [`STRIP_PIXELS`] pixels ([`color_strips`],
+//! Memory: rows are rasterized in strips of about `STRIP_PIXELS` pixels ([`color_strips`],
 //! [`face_id_strips`]; an item is scan-converted once per strip it meets), so [`write_png`]
 //! needs a strip's buffers and the drawing, never a buffer per pixel of the image. Strips do not
 //! change a pixel: an edge's crossing with a row is computed from the edge alone.
@@ -43,7 +43,7 @@ pub fn write_png(drawing: &Drawing, out: &mut dyn Write) -> io::Result<()> {
     super::png::write_rgb_rows(out, drawing.width, drawing.height, |sink| {
         color_strips(drawing, strip_rows(drawing.width), |_, strip| {
             px.clear();
-            px.extend(strip.iter().map(|&c| crate::raster::shade::to_u8(c)));
+            px.extend(strip.iter().map(|&c| crate::paint::to_u8(c)));
             sink(&px)
         })
     })

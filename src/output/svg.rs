@@ -13,7 +13,7 @@
 //!   attributes sorted by name).
 
 use super::drawing::{Drawing, Seams};
-use crate::raster::shade::to_u8;
+use crate::paint::to_u8;
 use ::svg::Document;
 use ::svg::Node;
 use ::svg::node::element::{ClipPath, Definitions, Group, Path, Rectangle};

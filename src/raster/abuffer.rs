@@ -40,9 +40,9 @@ use super::EMPTY;
 use super::sample::{self, DepthOrder};
 use crate::camera::Camera;
 use crate::exact::Fallbacks;
-use crate::pipeline::Fill;
+use crate::paint::Fill;
+use crate::paint::face_paint;
 use crate::project::ScreenScene;
-use crate::raster::shade::face_paint;
 use crate::scene::Scene;
 
 /// What a polygon's fragments carry besides depth.

@@ -6,7 +6,6 @@ pub mod interpolate;
 pub mod lighting;
 pub mod sample;
 pub mod scanline;
-pub mod shade;
 pub mod texture;
 pub mod warnock;
 pub mod zbuffer;

@@ -2,7 +2,7 @@
 //!
 //! Invariants of the [`ZBuffer`] it produces:
 //! - **Sampling**: pixel (i, j) shows what lies at its centre, exactly (see
-//!   [`Samples`](crate::exact::Samples)); no anti-aliasing.
+//!   [`Samples`]); no anti-aliasing.
 //! - **Fill rule**: a sample is inside a polygon when an odd number of its edges cross the
 //!   sample's row strictly to the right of it, an edge covering rows `[y_low, y_high)`. Polygons
 //!   that share an edge therefore never both cover, nor both miss, a sample on it: no cracks and

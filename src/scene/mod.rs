@@ -35,7 +35,7 @@ pub type FaceId = u32;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     pub name: String,
-    /// Lit color (linear RGB in [0,1]), scaled by ambient + Lambert terms when shading.
+    /// Lit color (linear RGB in \[0,1\]), scaled by ambient + Lambert terms when shading.
     pub diffuse: [f64; 3],
     /// Unlit color added to the lit one (X3D emissiveColor, OBJ Ke).
     pub emissive: [f64; 3],
@@ -129,9 +129,9 @@ pub struct Scene {
     /// directory; the image is read only when rendering.
     pub material_textures: Vec<Option<PathBuf>>,
     /// The lights the scene is seen under (`--light`, `--specular`): every shaded method uses
-    /// them (see `raster::lighting::Lighting::of_scene`).
+    /// them (see `paint::lighting::Lighting::of_scene`).
     pub lights: SceneLights,
-    /// The background colour the file asks for (linear RGB in [0,1]): X3D's Background (black by
+    /// The background colour the file asks for (linear RGB in \[0,1\]): X3D's Background (black by
     /// default); `None` for formats that have no such notion.
     pub background: Option<[f64; 3]>,
 }
@@ -155,7 +155,7 @@ pub enum Light {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum CameraLights {
     /// A key light from above and to the left of the view and a weak fill from the right
-    /// (`raster::lighting::KEY` and `FILL`): faces of different directions get different shades,
+    /// (`paint::lighting::KEY` and `FILL`): faces of different directions get different shades,
     /// as in a CAD viewer's or matplotlib's default (`LightSource(azdeg=315, altdeg=45)`).
     #[default]
     KeyFill,

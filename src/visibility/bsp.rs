@@ -33,7 +33,7 @@ use crate::exact::polygon::{Piece, Split, convex_pieces, separated};
 use crate::exact::predicates::{Line, line_side};
 use crate::exact::{GridPoint, Plane, Samples};
 use crate::output::drawing::{DrawItem, Drawing, SeamStroke, Seams};
-use crate::pipeline::Fill;
+use crate::paint::Fill;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::Scene;
@@ -619,7 +619,7 @@ impl BspMethod {
             surfaces(scene, screen, camera.eye, |i| {
                 let (color, opacity) = paints[i];
                 (
-                    crate::raster::shade::to_u8(color),
+                    crate::paint::to_u8(color),
                     scene.faces[screen.polys[i].face as usize].material,
                     opacity.to_bits(),
                 )
@@ -686,7 +686,7 @@ fn seam_strokes(
     group: &dyn Fn(&Piece) -> u32,
     color: &dyn Fn(&Piece) -> [f64; 3],
 ) -> Vec<SeamStroke> {
-    use crate::raster::shade::to_u8;
+    use crate::paint::to_u8;
     let mut by_color: BTreeMap<[u8; 3], SeamStroke> = BTreeMap::new();
     for e in shared_edges(pieces, vertices, |i| group(&pieces[i])) {
         let [ca, cb] = e.pieces.map(|i| color(&pieces[i]));

@@ -26,7 +26,7 @@ pub use painter::Painter;
 use crate::camera::Camera;
 use crate::exact::{GridPoint, Samples};
 use crate::output::drawing::Drawing;
-use crate::pipeline::Fill;
+use crate::paint::Fill;
 use crate::project::ScreenScene;
 use crate::scene::Scene;
 
@@ -72,12 +72,12 @@ pub fn pixel_ring(samples: &Samples, corners: &[GridPoint]) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// The colour and opacity every method gives a face ([`shade::face_paint`], with opacity
+/// The colour and opacity every method gives a face ([`paint::face_paint`], with opacity
 /// `1 - transparency`).
 ///
-/// [`shade::face_paint`]: crate::raster::shade::face_paint
+/// [`paint::face_paint`]: crate::paint::face_paint
 pub fn face_paint(scene: &Scene, face: usize, camera: &Camera, fill: Fill) -> ([f64; 3], f64) {
-    let (color, transparency) = crate::raster::shade::face_paint(scene, face, camera, fill);
+    let (color, transparency) = crate::paint::face_paint(scene, face, camera, fill);
     (color, 1.0 - transparency)
 }
 

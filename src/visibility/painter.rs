@@ -15,7 +15,7 @@ use super::{VisibilityMethod, VisibilityResult, background, face_paint, pixel_ri
 use crate::camera::Camera;
 use crate::exact::Samples;
 use crate::output::drawing::{DrawItem, Drawing};
-use crate::pipeline::Fill;
+use crate::paint::Fill;
 use crate::project::ScreenScene;
 use crate::scene::Scene;
 use std::cmp::Reverse;

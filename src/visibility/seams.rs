@@ -1,5 +1,5 @@
 //! Where two visible groups meet: the boundary segments that two pieces of different groups
-//! share, found exactly. A drawing paints them under its fills ([`crate::output::drawing::Seam`])
+//! share, found exactly. A drawing paints them under its fills ([`crate::output::drawing::Seams`])
 //! so that viewers' anti-aliasing does not show the background through the boundary (two
 //! abutting edges each cover part of a pixel, and blending them one after the other lets the
 //! background through: "conflation").
