@@ -19,7 +19,7 @@ use sightline::scene::Scene;
 use sightline::scene::primitives::{
     interlocked_tori, interpenetrating_tori, random_triangle_soup, sphere_scene,
 };
-use sightline::visibility::bsp::visible_set;
+use sightline::visibility::coverage_map::visible_set;
 use std::hint::black_box;
 use std::time::Duration;
 

@@ -22,12 +22,13 @@ mod seam_measure;
 
 use seam_measure::{alpha_area, over_white, rasterize, rings_area, seam_defects};
 use sightline::camera::{CamFile, CameraSpec};
+use sightline::draw::{DrawOptions, picture};
 use sightline::output::svg::{SvgOptions, write_svg};
 use sightline::pipeline::{Fill, colorize_polys, prepare};
 use sightline::project::CullMode;
 use sightline::raster::{EMPTY, zbuffer};
 use sightline::scene::Scene;
-use sightline::visibility::{BspMethod, VisibilityMethod};
+use sightline::visibility::CoverageMap;
 
 fn main() {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
@@ -78,15 +79,26 @@ fn main() {
         let (w, h) = (camera.width, camera.height);
         let prepared = prepare(&scene, &camera, CullMode::Auto);
         let screen = &prepared.screen;
-        let picture = BspMethod {
-            merge_surfaces: true,
-            seams: true,
-        }
-        .run(&scene, screen, &camera, Fill::Shade)
+        let merged = picture(
+            &CoverageMap,
+            &scene,
+            screen,
+            &camera,
+            Fill::Shade,
+            DrawOptions::picture(),
+            None,
+        )
         .drawing;
-        let per_face = BspMethod::default()
-            .run(&scene, screen, &camera, Fill::Shade)
-            .drawing;
+        let per_face = picture(
+            &CoverageMap,
+            &scene,
+            screen,
+            &camera,
+            Fill::Shade,
+            DrawOptions::per_face(),
+            None,
+        )
+        .drawing;
         let exact: f64 = per_face
             .items
             .iter()
@@ -128,14 +140,14 @@ fn main() {
                 .collect::<Vec<[u8; 3]>>()
         };
         let ideal_defects = seam_defects(&ideal, &reference, &covered, w as usize, h as usize);
-        let mut before = picture.clone();
+        let mut before = merged.clone();
         before.seams = Default::default();
         let mut row = Vec::new();
         let mut sizes = Vec::new();
         let mut alphas = Vec::new();
         let mut rsvg = Vec::new();
         let mut defects = Vec::new();
-        for d in [&before, &picture] {
+        for d in [&before, &merged] {
             let mut d = d.clone();
             d.background = None;
             let svg = write_svg(&d, &SvgOptions::default());

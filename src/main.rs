@@ -29,9 +29,12 @@ use clap::{Args, Parser, Subcommand};
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use sightline::camera::{CamFile, Camera, CameraSpec, NamedView, Projection};
+use sightline::draw::{DrawOptions, draw};
+use sightline::methods::{self, Engine, METHODS, Method, Output};
 use sightline::output::{png, write_with};
 use sightline::pipeline::{self, Fill};
 use sightline::project::CullMode;
+use sightline::raster::renderer::RasterOptions;
 use sightline::scene::{self, Format, Scene};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -70,7 +73,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Render a scene: PNG by an image-space method (the z-buffer is the reference), or exact
-    /// visible polygons as SVG, JSON or PNG (--method bsp).
+    /// visible polygons as SVG, JSON or PNG (--method coverage).
     #[command(after_help = EXAMPLES)]
     Render(RenderArgs),
     /// Describe a scene: counts, closedness, bounds, culling, and which stages it needs.
@@ -81,12 +84,12 @@ enum Command {
     /// one face and no background in their 3x3 neighbourhood there (edges sampled differently
     /// by two correct methods are left out).
     #[command(
-        after_help = "Examples:\n  sightline compare fixtures/cube.obj --method bsp\n  sightline compare scene.obj --method painter --size 512x512\n  sightline compare scene.obj --method warnock --against scanline\n  sightline compare fixtures/cyclic_bars.obj --method painter --view front --diff diff.png"
+        after_help = "Examples:\n  sightline compare fixtures/cube.obj --method coverage\n  sightline compare scene.obj --method painter --size 512x512\n  sightline compare scene.obj --method warnock --against scanline\n  sightline compare fixtures/cyclic_bars.obj --method painter --view front --diff diff.png"
     )]
     Compare(CompareArgs),
     /// Time each stage (load, project + cull, then one method) and report triangles per second.
     #[command(
-        after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024\n  sightline bench --soup 1000 --method bsp --repeat 3\n  sightline bench --sphere 100000 --method warnock --size 4096x4096"
+        after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024\n  sightline bench --soup 1000 --method coverage --repeat 3\n  sightline bench --sphere 100000 --method warnock --size 4096x4096"
     )]
     Bench(BenchArgs),
 }
@@ -143,119 +146,28 @@ struct CameraArgs {
     cull: CullMode,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-enum Method {
-    /// Z-buffer with exact coverage and depth at pixel centres (the reference). PNG only.
-    Zbuffer,
-    /// A-buffer: per-pixel fragment lists, translucent faces blended back to front. PNG only.
-    Abuffer,
-    /// Watkins scanline: edge tables, active edges, spans. PNG only.
-    Scanline,
-    /// Warnock area subdivision down to a pixel. PNG only.
-    Warnock,
-    /// Exact visible polygons (object space): depth-aware coverage map; a 3D BSP for the painter
-    /// order of translucent faces.
-    Bsp,
-    /// APPROXIMATE baseline: whole faces sorted by farthest depth, no splitting (as matplotlib's
-    /// mplot3d and GL2PS's simple sort do). Wrong on cyclic overlap and interpenetration.
-    Painter,
+/// `--method`: any registered method ([`methods::METHODS`]), listed with its summary in the help.
+fn method_arg() -> impl clap::builder::TypedValueParser<Value = &'static Method> {
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+    PossibleValuesParser::new(
+        METHODS
+            .iter()
+            .map(|m| PossibleValue::new(m.name).help(m.summary)),
+    )
+    .map(|name| methods::method(&name).expect("only registered names parse"))
 }
 
-impl Method {
-    fn name(self) -> &'static str {
-        match self {
-            Method::Zbuffer => "zbuffer",
-            Method::Abuffer => "abuffer",
-            Method::Scanline => "scanline",
-            Method::Warnock => "warnock",
-            Method::Bsp => "bsp",
-            Method::Painter => "painter",
-        }
-    }
-
-    /// Does it draw pixels (rather than polygons)?
-    fn is_raster(self) -> bool {
-        matches!(
-            self,
-            Method::Zbuffer | Method::Abuffer | Method::Scanline | Method::Warnock
-        )
-    }
-}
-
-/// What an image-space method produced: per pixel the winning screen polygon (or `EMPTY`), the
-/// A-buffer's blended colours when it shaded, and its counters for `--stats`.
-struct RasterResult {
-    poly: Vec<u32>,
-    /// The z-buffer's normalized depths, when asked for.
-    depth: Option<Vec<f64>>,
-    blended: Option<Vec<[f64; 3]>>,
-    detail: String,
-}
-
-/// Runs an image-space method on a prepared scene.
-fn run_raster(
-    method: Method,
-    scene: &Scene,
-    prepared: &pipeline::Prepared,
-    camera: &Camera,
-    fill: Fill,
-    background: [u8; 3],
-    want_depth: bool,
-) -> RasterResult {
-    use sightline::raster::{abuffer, scanline, warnock, zbuffer};
-    let screen = &prepared.screen;
-    match method {
-        Method::Zbuffer => {
-            let bar = progress_bar(screen.polys.len() as u64, "rendering");
-            let zb = zbuffer::render(screen, |n| bar.set_position(n as u64));
-            bar.finish_and_clear();
-            let detail = format!(
-                "fragments {}, exact fallbacks: edge {} depth {}, depth ties {}",
-                zb.stats.fragments,
-                zb.stats.column_fallbacks,
-                zb.stats.depth_fallbacks,
-                zb.stats.depth_ties
-            );
-            RasterResult {
-                depth: want_depth.then(|| zb.normalized_depth(screen)),
-                poly: zb.poly,
-                blended: None,
-                detail,
-            }
-        }
-        Method::Abuffer => {
-            let paints = abuffer::paints(scene, screen, camera, fill);
-            let bg = match fill {
-                Fill::Id => [0.0; 3],
-                Fill::Shade => background.map(|c| c as f64 / 255.0),
-            };
-            let ab = abuffer::render(screen, &paints, bg, abuffer::Options::default());
-            RasterResult {
-                depth: None,
-                detail: format!("{:?}", ab.stats),
-                blended: (fill == Fill::Shade).then_some(ab.color),
-                poly: ab.poly,
-            }
-        }
-        Method::Scanline => {
-            let r = scanline::render(screen);
-            RasterResult {
-                depth: None,
-                detail: format!("{:?}", r.stats),
-                poly: r.poly,
-                blended: None,
-            }
-        }
-        Method::Warnock => {
-            let r = warnock::render(screen);
-            RasterResult {
-                depth: None,
-                detail: format!("{:?}", r.stats),
-                poly: r.poly,
-                blended: None,
-            }
-        }
-        Method::Bsp | Method::Painter => unreachable!("object-space methods draw polygons"),
+/// The names of the registered methods with a capability, for messages: "a, b or c".
+fn names_with(capable: impl Fn(&Method) -> bool) -> String {
+    let names: Vec<&str> = METHODS
+        .iter()
+        .filter(|m| capable(m))
+        .map(|m| m.name)
+        .collect();
+    match names.split_last() {
+        Some((last, [])) => last.to_string(),
+        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+        None => String::new(),
     }
 }
 
@@ -279,12 +191,7 @@ impl From<ShadingArg> for sightline::raster::lighting::Shading {
 }
 
 /// What the output file holds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-enum OutputFormat {
-    Png,
-    Svg,
-    Json,
-}
+type OutputFormat = Output;
 
 #[derive(Args)]
 struct RenderArgs {
@@ -296,12 +203,13 @@ struct RenderArgs {
     #[arg(short, long, value_name = "OUT")]
     output: PathBuf,
     /// Output format (default: from the output's extension; for -, PNG unless --method is
-    /// bsp or painter, then SVG).
+    /// coverage, bsp or painter, then SVG).
     #[arg(long, value_enum)]
     to: Option<OutputFormat>,
-    /// Rendering method (default: bsp, the exact visible set, for SVG and JSON; zbuffer for PNG).
-    #[arg(long, value_enum)]
-    method: Option<Method>,
+    /// Rendering method (default: coverage, the exact visible set, for SVG and JSON; zbuffer for
+    /// PNG).
+    #[arg(long, value_parser = method_arg())]
+    method: Option<&'static Method>,
     /// Outline every region in SVG output (black, 0.5 px). SVG only.
     #[arg(long)]
     stroke: bool,
@@ -365,11 +273,11 @@ struct CompareArgs {
     #[command(flatten)]
     camera: CameraArgs,
     /// The method to check.
-    #[arg(long, value_enum, default_value_t = Method::Bsp)]
-    method: Method,
+    #[arg(long, value_parser = method_arg(), default_value = "coverage")]
+    method: &'static Method,
     /// The method to check it against (interior pixels: see `compare --help`).
-    #[arg(long, value_enum, default_value_t = Method::Zbuffer)]
-    against: Method,
+    #[arg(long, value_parser = method_arg(), default_value = "zbuffer")]
+    against: &'static Method,
     /// Also write a PNG of the differences: red where the two cover a pixel with different faces,
     /// blue where only one covers it, over the reference in grey (one level per face) on white.
     #[arg(long, value_name = "FILE.png")]
@@ -405,27 +313,10 @@ struct BenchArgs {
     #[arg(long, default_value_t = 5, value_parser = parse_count, allow_negative_numbers = true)]
     repeat: usize,
     /// Method to time after projection.
-    #[arg(long, value_enum, default_value_t = BenchMethod::Zbuffer)]
-    method: BenchMethod,
+    #[arg(long, value_parser = method_arg(), default_value = "zbuffer")]
+    method: &'static Method,
     #[command(flatten)]
     camera: CameraArgs,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-enum BenchMethod {
-    /// The exact z-buffer.
-    Zbuffer,
-    /// The A-buffer (flat paints, translucency blended).
-    Abuffer,
-    /// Watkins scanline.
-    Scanline,
-    /// Warnock area subdivision.
-    Warnock,
-    /// The exact visible set, as `render --method bsp` computes it for opaque scenes.
-    Bsp,
-    /// The exact visible set through the full 3D BSP walked front to back (the painter order
-    /// translucent scenes need); slow on interpenetrating soups.
-    BspTree,
 }
 
 fn parse_vec3(s: &str) -> Result<DVec3, String> {
@@ -705,7 +596,7 @@ fn output_format(a: &RenderArgs) -> sightline::Result<OutputFormat> {
         Some("png") => OutputFormat::Png,
         Some("svg") => OutputFormat::Svg,
         Some("json") => OutputFormat::Json,
-        _ if a.output.as_os_str() == "-" => match a.method.is_none_or(Method::is_raster) {
+        _ if a.output.as_os_str() == "-" => match a.method.is_none_or(Method::is_image_space) {
             true => OutputFormat::Png,
             false => OutputFormat::Svg,
         },
@@ -782,40 +673,18 @@ fn ignored_flag(a: &RenderArgs, format: OutputFormat) -> Option<String> {
     None
 }
 
-/// The drawing of an object-space method, with its stats. `merge_surfaces`: draw coplanar faces
-/// of one paint as one region (for pictures; per-face output such as JSON must not).
-fn run_method(
-    method: Method,
-    scene: &Scene,
-    prepared: &pipeline::Prepared,
-    camera: &Camera,
-    fill: Fill,
-    merge_surfaces: bool,
-) -> sightline::visibility::VisibilityResult {
-    if method == Method::Bsp {
-        // Seams are for vector drawings, which the pictures (merged surfaces) are.
-        let m = sightline::visibility::BspMethod {
-            merge_surfaces,
-            seams: merge_surfaces,
-        };
-        let bars = StageBars::default();
-        let report = |stage: &'static str, done, total| bars.report(stage, done, total);
-        let report: Option<sightline::progress::Report> =
-            std::io::stderr().is_terminal().then_some(&report);
-        return m.run_with_progress(scene, &prepared.screen, camera, fill, report);
-    }
-    let m = sightline::visibility::method_by_name(method.name())
-        .expect("every object-space CLI method is registered");
-    m.run(scene, &prepared.screen, camera, fill)
+/// Progress bars for the library's long stages when standard error is a terminal; `None`
+/// otherwise (no cost, no output).
+fn with_bars<T>(run: impl FnOnce(Option<sightline::progress::Report>) -> T) -> T {
+    let bars = StageBars::default();
+    let report = |stage: &'static str, done, total| bars.report(stage, done, total);
+    run(std::io::stderr().is_terminal().then_some(&report))
 }
 
 fn render(a: RenderArgs) -> sightline::Result<()> {
     let format = output_format(&a)?;
     // The exact visible set for vector output; the reference z-buffer for pixels.
-    let method = a.method.unwrap_or(match format {
-        OutputFormat::Png => Method::Zbuffer,
-        OutputFormat::Svg | OutputFormat::Json => Method::Bsp,
-    });
+    let method = a.method.unwrap_or(methods::default_for(format));
     if refuses_binary_output(format, &a.output, std::io::stdout().is_terminal())
         || (format == OutputFormat::Png && is_terminal_path(&a.output))
     {
@@ -826,26 +695,27 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
     if let Some(message) = ignored_flag(&a, format) {
         return Err(sightline::Error::Output(message));
     }
-    if method.is_raster() && format != OutputFormat::Png {
+    if !method.writes(format) {
         return Err(sightline::Error::Output(format!(
-            "--method {} draws pixels: write it as PNG (use --method bsp for SVG or JSON)",
-            method.name()
+            "--method {} draws pixels: write it as PNG (for SVG or JSON use --method {})",
+            method.name,
+            names_with(|m| m.writes(format))
         )));
     }
-    if a.depth.is_some() && method != Method::Zbuffer {
-        return Err(sightline::Error::Output(
-            "--depth needs --method zbuffer".into(),
-        ));
-    }
-    if a.shading != ShadingArg::Flat
-        && !matches!(method, Method::Zbuffer | Method::Scanline | Method::Warnock)
-    {
+    if a.depth.is_some() && !method.depth {
         return Err(sightline::Error::Output(format!(
-            "--shading {} needs --method zbuffer, scanline or warnock ({} draws flat colours)",
+            "--depth needs --method {}",
+            names_with(|m| m.depth)
+        )));
+    }
+    if a.shading != ShadingArg::Flat && !method.shading {
+        return Err(sightline::Error::Output(format!(
+            "--shading {} needs --method {} ({} draws flat colours)",
             clap::ValueEnum::to_possible_value(&a.shading)
                 .map(|v| v.get_name().to_string())
                 .unwrap_or_default(),
-            method.name()
+            names_with(|m| m.shading),
+            method.name
         )));
     }
     for (name, v) in [("--specular", a.specular), ("--shininess", a.shininess)] {
@@ -896,21 +766,25 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
     let t2 = Instant::now();
     // What writes the output, streamed into the file (a drawing's PNG is rasterized by strips).
     type Emit<'a> = Box<dyn FnOnce(&mut dyn std::io::Write) -> std::io::Result<()> + 'a>;
-    let (emit, detail): (Emit, _) = if method.is_raster() {
-        let r = run_raster(
-            method,
-            &scene,
-            &prepared,
-            &camera,
-            a.fill,
-            background_rgb,
-            a.depth.is_some(),
-        );
+    let paints = sightline::paint::screen_paints(&scene, &prepared.screen, &camera, a.fill);
+    let (emit, detail): (Emit, _) = if let Engine::Image(renderer) = method.engine {
+        let options = RasterOptions {
+            paints: &paints,
+            background: match a.fill {
+                Fill::Id => [0.0; 3],
+                Fill::Shade => background_rgb.map(|c| c as f64 / 255.0),
+            },
+            blend: a.fill == Fill::Shade,
+            depth: a.depth.is_some(),
+        };
+        let r = with_bars(|report| renderer.render(&prepared.screen, &options, report));
         use sightline::raster::lighting;
         let textured = scene.material_textures.iter().any(Option::is_some);
-        if textured && method == Method::Abuffer && a.fill == Fill::Shade {
+        if textured && !method.shading && a.fill == Fill::Shade {
             eprintln!(
-                "warning: the A-buffer blends flat colours: textures are not applied (use --method zbuffer, scanline or warnock)"
+                "warning: --method {} fills flat colours: textures are not applied (use --method {})",
+                method.name,
+                names_with(|m| m.shading)
             );
         }
         let image = match r.blended {
@@ -956,29 +830,54 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             r.detail,
         )
     } else {
-        let merge = format != OutputFormat::Json;
-        let mut result = run_method(method, &scene, &prepared, &camera, a.fill, merge);
-        if result.drawing.background.is_none() {
-            result.drawing.background = background.map(|c| c.map(|v| v as f64 / 255.0));
+        let Engine::Object(strategy) = method.engine else {
+            unreachable!("a method is object-space or image-space")
+        };
+        // Pictures merge the regions of one surface and fill their seams; JSON keeps faces apart.
+        let options = match format {
+            OutputFormat::Json => DrawOptions::per_face(),
+            OutputFormat::Svg | OutputFormat::Png => DrawOptions::picture(),
+        };
+        let visible = with_bars(|report| {
+            strategy.visible_set(
+                &prepared.screen,
+                &|k| !paints[k as usize].is_opaque(),
+                report,
+            )
+        });
+        let mut drawing = with_bars(|report| {
+            draw(
+                &scene,
+                &prepared.screen,
+                &camera,
+                &paints,
+                &visible,
+                options.with_background(a.fill, None),
+                report,
+            )
+        });
+        if drawing.background.is_none() {
+            drawing.background = background.map(|c| c.map(|v| v as f64 / 255.0));
         }
-        let detail = serde_json::Value::Object(result.stats.clone()).to_string();
+        let stats = visible.stats;
+        let detail = serde_json::Value::Object(stats.clone()).to_string();
         let emit: Emit = match format {
             OutputFormat::Svg => {
                 let options = sightline::output::svg::SvgOptions {
                     stroke: a.stroke.then_some(([0.0; 3], 0.5)),
                     crisp: a.crisp,
                 };
-                let svg = sightline::output::svg::write_svg(&result.drawing, &options);
+                let svg = sightline::output::svg::write_svg(&drawing, &options);
                 Box::new(move |w| w.write_all(svg.as_bytes()))
             }
             OutputFormat::Json => {
-                let mut stats = result.stats.clone();
-                stats.insert("method".into(), method.name().into());
-                let json = sightline::output::json::write_json(&result.drawing, &scene, &stats);
+                let mut stats = stats;
+                stats.insert("method".into(), method.name.into());
+                let json = sightline::output::json::write_json(&drawing, &scene, &stats);
                 Box::new(move |w| w.write_all(json.as_bytes()))
             }
             OutputFormat::Png => {
-                Box::new(move |w| sightline::output::raster_drawing::write_png(&result.drawing, w))
+                Box::new(move |w| sightline::output::raster_drawing::write_png(&drawing, w))
             }
         };
         (emit, detail)
@@ -991,7 +890,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             "load {:.3}s, project+cull {:.3}s, {} {:.3}s",
             t_load.as_secs_f64(),
             t_project.as_secs_f64(),
-            method.name(),
+            method.name,
             t_method.as_secs_f64()
         );
         eprintln!(
@@ -1010,23 +909,13 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
 
 /// A method's face id at every pixel centre, and its time after projection.
 fn face_ids_of(
-    method: Method,
+    method: &Method,
     scene: &Scene,
     prepared: &pipeline::Prepared,
     camera: &Camera,
 ) -> (Vec<Option<u32>>, f64) {
     let t = Instant::now();
-    let ids = if method.is_raster() {
-        let r = run_raster(method, scene, prepared, camera, Fill::Id, [0; 3], false);
-        let polys = &prepared.screen.polys;
-        r.poly
-            .iter()
-            .map(|&p| (p != sightline::raster::EMPTY).then(|| polys[p as usize].id))
-            .collect()
-    } else {
-        let result = run_method(method, scene, prepared, camera, Fill::Id, false);
-        sightline::output::raster_drawing::face_ids(&result.drawing)
-    };
+    let ids = with_bars(|report| method.face_ids(scene, &prepared.screen, camera, report));
     (ids, t.elapsed().as_secs_f64())
 }
 
@@ -1051,10 +940,7 @@ fn compare(a: CompareArgs) -> sightline::Result<()> {
     let pct = |n: usize, d: usize| 100.0 * n as f64 / d.max(1) as f64;
     println!(
         "{} vs {} at {}x{}:",
-        a.method.name(),
-        a.against.name(),
-        camera.width,
-        camera.height
+        a.method.name, a.against.name, camera.width, camera.height
     );
     println!(
         "  covered pixels  {:9}  mismatched {:9} ({:.4}%)",
@@ -1070,10 +956,7 @@ fn compare(a: CompareArgs) -> sightline::Result<()> {
     );
     println!(
         "  time: {} {:.4} s, {} {:.4} s (after load and projection)",
-        a.method.name(),
-        t_method,
-        a.against.name(),
-        t_ref
+        a.method.name, t_method, a.against.name, t_ref
     );
     Ok(())
 }
@@ -1122,68 +1005,30 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
         let t = Instant::now();
         let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
         project_times.push(t.elapsed().as_secs_f64());
-        let fallbacks_before = sightline::exact::predicates::fallback_count();
+        // Shaded paints, so that translucent faces take the path they take in `render`.
+        let paints =
+            sightline::paint::screen_paints(&scene, &prepared.screen, &camera, Fill::Shade);
         let t = Instant::now();
-        report = match a.method {
-            BenchMethod::Zbuffer => {
-                let zb = sightline::raster::zbuffer::render(&prepared.screen, |_| {});
+        report = match a.method.engine {
+            Engine::Image(renderer) => {
+                let options = RasterOptions {
+                    paints: &paints,
+                    background: [1.0; 3],
+                    blend: true,
+                    depth: false,
+                };
+                let r = renderer.render(&prepared.screen, &options, None);
                 method_times.push(t.elapsed().as_secs_f64());
-                format!(
-                    "fragments {}, exact fallbacks: edge {} depth {}",
-                    zb.stats.fragments, zb.stats.column_fallbacks, zb.stats.depth_fallbacks
-                )
+                r.detail
             }
-            BenchMethod::Abuffer => {
-                use sightline::raster::abuffer;
-                let paints = abuffer::paints(&scene, &prepared.screen, &camera, Fill::Shade);
-                let ab = abuffer::render(
+            Engine::Object(strategy) => {
+                let visible = strategy.visible_set(
                     &prepared.screen,
-                    &paints,
-                    [1.0; 3],
-                    abuffer::Options::default(),
+                    &|k| !paints[k as usize].is_opaque(),
+                    None,
                 );
                 method_times.push(t.elapsed().as_secs_f64());
-                format!("{:?}", ab.stats)
-            }
-            BenchMethod::Scanline => {
-                let r = sightline::raster::scanline::render(&prepared.screen);
-                method_times.push(t.elapsed().as_secs_f64());
-                format!("{:?}", r.stats)
-            }
-            BenchMethod::Warnock => {
-                let r = sightline::raster::warnock::render(&prepared.screen);
-                method_times.push(t.elapsed().as_secs_f64());
-                format!("{:?}", r.stats)
-            }
-            BenchMethod::Bsp => {
-                let (visible, cs) = sightline::visibility::bsp::visible_set(&prepared.screen);
-                method_times.push(t.elapsed().as_secs_f64());
-                format!(
-                    "pieces {} -> visible pieces {} ({:.3} per polygon), replaced {}, overlap tests {}, exact fallbacks {}",
-                    cs.inserted,
-                    visible.pieces.len(),
-                    visible.pieces.len() as f64 / prepared.screen.polys.len().max(1) as f64,
-                    cs.replaced,
-                    cs.overlap_tests,
-                    sightline::exact::predicates::fallback_count() - fallbacks_before
-                )
-            }
-            BenchMethod::BspTree => {
-                let mut bsp = sightline::visibility::bsp::Bsp::build(&prepared.screen);
-                let visible = bsp.visible_set(&prepared.screen);
-                method_times.push(t.elapsed().as_secs_f64());
-                let st = &bsp.stats;
-                format!(
-                    "pieces {} -> fragments {} ({:.3} per polygon), BSP nodes {} depth {}, visible pieces {}, coverage nodes {}, exact fallbacks {}",
-                    st.pieces,
-                    st.fragments,
-                    st.fragments as f64 / st.polygons.max(1) as f64,
-                    st.nodes,
-                    st.depth,
-                    visible.pieces.len(),
-                    st.coverage_nodes,
-                    sightline::exact::predicates::fallback_count() - fallbacks_before
-                )
+                serde_json::Value::Object(visible.stats).to_string()
             }
         };
         screen_stats = Some(prepared.screen.stats);
@@ -1209,14 +1054,7 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
             tris as f64 / tl
         );
     }
-    let name = match a.method {
-        BenchMethod::Zbuffer => "z-buffer",
-        BenchMethod::Abuffer => "a-buffer",
-        BenchMethod::Scanline => "scanline",
-        BenchMethod::Warnock => "warnock",
-        BenchMethod::Bsp => "bsp",
-        BenchMethod::BspTree => "bsp-tree",
-    };
+    let name = a.method.name;
     println!(
         "  project + cull   {:9.4} s  {:12.0} triangles/s",
         tp,

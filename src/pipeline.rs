@@ -2,7 +2,7 @@
 //! The CLI, the tests and the benchmarks all go through here, so they run the same code.
 
 use crate::camera::Camera;
-use crate::paint::{face_paint, to_u8};
+use crate::paint::{screen_paints, to_u8};
 use crate::project::{CullMode, ScreenScene, project};
 use crate::raster::{EMPTY, ZBuffer, zbuffer};
 use crate::scene::Scene;
@@ -57,10 +57,9 @@ pub fn colorize_polys(
     background: [u8; 3],
 ) -> Vec<[u8; 3]> {
     // One colour per screen polygon, computed once.
-    let colors: Vec<[u8; 3]> = screen
-        .polys
-        .iter()
-        .map(|p| to_u8(face_paint(scene, p.face as usize, camera, fill).0))
+    let colors: Vec<[u8; 3]> = screen_paints(scene, screen, camera, fill)
+        .into_iter()
+        .map(|p| to_u8(p.color))
         .collect();
     let background = match fill {
         Fill::Id => [0, 0, 0],

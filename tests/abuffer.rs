@@ -40,7 +40,7 @@ fn render_checked(
     fill: Fill,
     options: Options,
 ) -> ABuffer {
-    let paints = abuffer::paints(scene, screen, cam, fill);
+    let paints = sightline::paint::screen_paints(scene, screen, cam, fill);
     let ab = abuffer::render(screen, &paints, BLACK, options);
     let zb = zbuffer::render(screen, |_| {});
     if let Some(k) = (0..ab.poly.len()).find(|&k| ab.poly[k] != zb.poly[k]) {
@@ -145,7 +145,7 @@ fn seed_transparent_scene_at_the_seeds_resolution_is_the_seeds_table() {
 /// background), under both rasterization orders.
 fn check_opaque(scene: &Scene, cam: &Camera, fill: Fill) {
     let screen = prepare(scene, cam, CullMode::Auto).screen;
-    let paints = abuffer::paints(scene, &screen, cam, fill);
+    let paints = sightline::paint::screen_paints(scene, &screen, cam, fill);
     assert!(paints.iter().all(Paint::is_opaque));
     for opaque_first in [true, false] {
         let ab = render_checked(scene, &screen, cam, fill, Options { opaque_first });

@@ -7,7 +7,8 @@ use sightline::camera::{Camera, CameraSpec, NamedView, Projection};
 use sightline::pipeline::render_zbuffer;
 use sightline::project::CullMode;
 use sightline::scene::{Scene, SceneBuilder};
-use sightline::visibility::bsp::{Bsp, visible_set};
+use sightline::visibility::bsp::Bsp;
+use sightline::visibility::coverage_map::visible_set;
 use support::*;
 
 /// Interior mismatches between the exact ids and the z-buffer's, for both exact paths (the
@@ -129,15 +130,19 @@ mod random_scenes {
 
 /// Regions per face id in the BSP's drawing.
 fn regions_per_face(file: &str, view: NamedView) -> std::collections::BTreeMap<u32, usize> {
-    use sightline::visibility::{BspMethod, VisibilityMethod};
+    use sightline::draw::{DrawOptions, picture};
+    use sightline::visibility::CoverageMap;
     let scene = sightline::load(std::path::Path::new(file), None).unwrap();
     let cam = Camera::fit(view, scene.bounds().unwrap(), false, 40.0, 200, 200);
     let prepared = sightline::pipeline::prepare(&scene, &cam, CullMode::Auto);
-    let result = BspMethod::default().run(
+    let result = picture(
+        &CoverageMap,
         &scene,
         &prepared.screen,
         &cam,
         sightline::pipeline::Fill::Shade,
+        DrawOptions::per_face(),
+        None,
     );
     let mut count = std::collections::BTreeMap::new();
     for item in &result.drawing.items {

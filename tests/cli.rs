@@ -1026,7 +1026,11 @@ fn flags_that_do_not_apply_to_the_output_are_errors() {
 fn default_method_follows_the_output() {
     let dir = tempfile::tempdir().unwrap();
     let path = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
-    for (name, method) in [("d.svg", "bsp"), ("d.json", "bsp"), ("d.png", "zbuffer")] {
+    for (name, method) in [
+        ("d.svg", "coverage"),
+        ("d.json", "coverage"),
+        ("d.png", "zbuffer"),
+    ] {
         let o = sightline(&[
             "render",
             "fixtures/cube.obj",

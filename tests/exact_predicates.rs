@@ -337,7 +337,7 @@ fn piece_sign_shortcuts_agree_with_the_reference() {
     use sightline::pipeline::prepare;
     use sightline::project::CullMode;
     use sightline::scene::primitives::{interlocked_tori, random_triangle_soup};
-    use sightline::visibility::bsp::visible_set;
+    use sightline::visibility::coverage_map::visible_set;
 
     let scenes = [random_triangle_soup(16, 7), interlocked_tori(10, 6)];
     let mut zeros = 0;

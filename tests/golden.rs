@@ -26,9 +26,14 @@ const CASES: &[(&str, &str, &[&str])] = &[
         &["--method", "bsp"],
     ),
     (
-        "cyclic_bars_bsp.svg",
+        "cyclic_bars.svg",
         "fixtures/cyclic_bars.obj",
         &["--view", "front"],
+    ),
+    (
+        "cyclic_bars_bsp.svg",
+        "fixtures/cyclic_bars.obj",
+        &["--view", "front", "--method", "bsp"],
     ),
     (
         "cyclic_bars_painter.svg",
@@ -46,6 +51,11 @@ const CASES: &[(&str, &str, &[&str])] = &[
         "fixtures/interpenetrating.obj",
         &[],
     ),
+    (
+        "interpenetrating_bsp.json",
+        "fixtures/interpenetrating.obj",
+        &["--method", "bsp"],
+    ),
     ("t_junction.svg", "fixtures/t_junction.obj", &[]),
     (
         "two_objects_painter.png",
@@ -53,6 +63,11 @@ const CASES: &[(&str, &str, &[&str])] = &[
         &["--method", "painter"],
     ),
     ("seed_transparent.svg", "fixtures/seed_transparent.x3d", &[]),
+    (
+        "seed_transparent_bsp.svg",
+        "fixtures/seed_transparent.x3d",
+        &["--method", "bsp"],
+    ),
     (
         "seed_transparent.json",
         "fixtures/seed_transparent.x3d",

@@ -5,6 +5,7 @@ mod support;
 
 use glam::DVec3;
 use sightline::camera::{Camera, CameraSpec, Projection};
+use sightline::draw::{DrawOptions, picture};
 use sightline::output::drawing::{DrawItem, Drawing};
 use sightline::output::json::write_json;
 use sightline::output::raster_drawing::{colors, face_ids};
@@ -13,7 +14,7 @@ use sightline::pipeline::{Fill, prepare, render_zbuffer};
 use sightline::project::CullMode;
 use sightline::scene::primitives::sphere_scene;
 use sightline::scene::{Material, Scene, SceneBuilder};
-use sightline::visibility::{Painter, VisibilityMethod, methods};
+use sightline::visibility::{CoverageMap, Painter};
 use std::path::Path;
 use support::{add_triangle, interior_mismatches, pixel_of};
 
@@ -148,7 +149,15 @@ fn svg_and_json_are_deterministic() {
     let cam = spec_camera(&scene, (320, 240));
     let run = || {
         let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-        let mut r = Painter.run(&scene, &screen, &cam, Fill::Shade);
+        let mut r = picture(
+            &Painter,
+            &scene,
+            &screen,
+            &cam,
+            Fill::Shade,
+            DrawOptions::per_face(),
+            None,
+        );
         r.stats.remove("sort_seconds"); // a timing, not part of the picture
         (
             write_svg(&r.drawing, &SvgOptions::default()),
@@ -271,7 +280,15 @@ fn json_coordinates_round_trip_exactly() {
     let scene = sightline::load(Path::new("fixtures/primitives.x3d"), None).unwrap();
     let cam = spec_camera(&scene, (333, 217));
     let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-    let r = Painter.run(&scene, &screen, &cam, Fill::Shade);
+    let r = picture(
+        &Painter,
+        &scene,
+        &screen,
+        &cam,
+        Fill::Shade,
+        DrawOptions::per_face(),
+        None,
+    );
     let text = write_json(&r.drawing, &scene, &r.stats);
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let numbers = region_numbers(&text);
@@ -344,16 +361,24 @@ fn seed_transparent_scene_blends_exactly() {
 
 #[test]
 fn seed_transparent_scene_blends_exactly_with_bsp() {
-    check_seed_transparent(&sightline::visibility::BspMethod::default());
+    check_seed_transparent(&sightline::visibility::CoverageMap);
 }
 
-fn check_seed_transparent(method: &dyn sightline::visibility::VisibilityMethod) {
+fn check_seed_transparent(method: &dyn sightline::visibility::Strategy) {
     let scene = sightline::load(Path::new("fixtures/seed_transparent.x3d"), None).unwrap();
     let cam = CameraSpec::default()
         .resolve(scene.bounds().unwrap(), scene.viewpoint.as_ref())
         .unwrap();
     let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-    let mut r = method.run(&scene, &screen, &cam, Fill::Shade);
+    let mut r = picture(
+        method,
+        &scene,
+        &screen,
+        &cam,
+        Fill::Shade,
+        DrawOptions::per_face(),
+        None,
+    );
     r.drawing.background = Some([0.0; 3]);
     assert_eq!(r.drawing.items.len(), 2);
     assert_eq!(
@@ -393,7 +418,15 @@ fn check_seed_transparent(method: &dyn sightline::visibility::VisibilityMethod) 
 fn painter_mismatches(scene: &Scene, cam: &Camera) -> (usize, usize) {
     let (prepared, zb) = render_zbuffer(scene, cam, CullMode::Auto, |_| {});
     let reference = zb.face_ids(&prepared.screen);
-    let r = Painter.run(scene, &prepared.screen, cam, Fill::Id);
+    let r = picture(
+        &Painter,
+        scene,
+        &prepared.screen,
+        cam,
+        Fill::Id,
+        DrawOptions::per_face(),
+        None,
+    );
     assert_eq!(r.drawing.items.len(), prepared.screen.polys.len());
     assert_eq!(r.stats["faces_drawn"], prepared.screen.polys.len());
     let ids = face_ids(&r.drawing);
@@ -422,7 +455,15 @@ fn painter_misorders_a_long_face_on_the_primitives() {
     let cam = spec_camera(&scene, (640, 480));
     let (prepared, zb) = render_zbuffer(&scene, &cam, CullMode::Auto, |_| {});
     let reference = zb.face_ids(&prepared.screen);
-    let r = Painter.run(&scene, &prepared.screen, &cam, Fill::Id);
+    let r = picture(
+        &Painter,
+        &scene,
+        &prepared.screen,
+        &cam,
+        Fill::Id,
+        DrawOptions::per_face(),
+        None,
+    );
     let ids = face_ids(&r.drawing);
     let mesh_of = |id: u32| {
         let f = scene.faces.iter().find(|f| f.id == id).unwrap();
@@ -535,10 +576,10 @@ fn painter_fails_on_interpenetrating_triangles() {
 
 #[test]
 fn the_method_list_has_the_painter_marked_approximate() {
-    let ms = methods();
-    assert!(ms.iter().any(|m| m.name() == "painter" && !m.exact()));
-    assert!(sightline::visibility::method_by_name("painter").is_some());
-    assert!(sightline::visibility::method_by_name("nope").is_none());
+    use sightline::methods::{METHODS, method};
+    assert!(METHODS.iter().any(|m| m.name == "painter" && !m.exact));
+    assert!(method("painter").is_some());
+    assert!(method("nope").is_none());
 }
 
 /// A flat face stored as a fan of triangles (as CAD exports do), next to a tilted triangle of the
@@ -547,7 +588,6 @@ fn the_method_list_has_the_painter_marked_approximate() {
 /// entry per face; the face ids at pixel centres are the same either way.
 #[test]
 fn coplanar_faces_of_one_paint_are_drawn_as_one_region() {
-    use sightline::visibility::BspMethod;
     let mut b = SceneBuilder::new("fan");
     b.begin_mesh("fan");
     let m = b.default_material();
@@ -585,12 +625,28 @@ fn coplanar_faces_of_one_paint_are_drawn_as_one_region() {
         height: 100,
     };
     let screen = prepare(&scene, &cam, CullMode::Off).screen;
-    let merged = BspMethod {
-        merge_surfaces: true,
-        seams: false,
-    }
-    .run(&scene, &screen, &cam, Fill::Shade);
-    let apart = BspMethod::default().run(&scene, &screen, &cam, Fill::Shade);
+    let merged = picture(
+        &CoverageMap,
+        &scene,
+        &screen,
+        &cam,
+        Fill::Shade,
+        DrawOptions {
+            merge_surfaces: true,
+            seams: false,
+            background: None,
+        },
+        None,
+    );
+    let apart = picture(
+        &CoverageMap,
+        &scene,
+        &screen,
+        &cam,
+        Fill::Shade,
+        DrawOptions::per_face(),
+        None,
+    );
     let svg = write_svg(&merged.drawing, &SvgOptions::default());
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let faces: Vec<Option<&str>> = svg_paths(&doc)
@@ -642,13 +698,20 @@ fn translucent_drawings_blend_as_the_abuffer_does() {
         }
         let cam = spec_camera(&scene, (160, 120));
         let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-        let mut drawing = sightline::visibility::BspMethod::default()
-            .run(&scene, &screen, &cam, Fill::Shade)
-            .drawing;
+        let mut drawing = picture(
+            &CoverageMap,
+            &scene,
+            &screen,
+            &cam,
+            Fill::Shade,
+            DrawOptions::per_face(),
+            None,
+        )
+        .drawing;
         assert!(drawing.items.iter().any(|i| i.opacity < 1.0));
         drawing.background = Some([1.0; 3]);
         let ours = colors(&drawing);
-        let paints = abuffer::paints(&scene, &screen, &cam, Fill::Shade);
+        let paints = sightline::paint::screen_paints(&scene, &screen, &cam, Fill::Shade);
         let reference = abuffer::render(&screen, &paints, [1.0; 3], abuffer::Options::default());
         let differ = ours
             .iter()

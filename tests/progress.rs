@@ -3,13 +3,15 @@
 //! result.
 
 use sightline::camera::{Camera, CameraSpec, NamedView};
+use sightline::draw::{DrawOptions, picture};
 use sightline::pipeline::{Fill, prepare};
 use sightline::progress::Ticker;
 use sightline::project::{CullMode, ScreenScene};
 use sightline::scene::Scene;
 use sightline::scene::primitives::{random_triangle_soup, sphere_scene};
-use sightline::visibility::bsp::{Bsp, visible_set, visible_set_with_progress};
-use sightline::visibility::{BspMethod, VisibilityMethod};
+use sightline::visibility::CoverageMap;
+use sightline::visibility::bsp::Bsp;
+use sightline::visibility::coverage_map::{visible_set, visible_set_with_progress};
 use std::cell::RefCell;
 
 type Call = (&'static str, u64, u64);
@@ -94,11 +96,18 @@ fn the_bsp_method_reports_the_stages_it_runs_and_draws_the_same() {
         let screen = prepare(&scene, &cam, CullMode::Auto).screen;
         let calls = RefCell::new(Vec::new());
         let report = |s: &'static str, d: u64, t: u64| calls.borrow_mut().push((s, d, t));
-        let m = BspMethod {
-            merge_surfaces: true,
-            seams: true,
+        let run = |report| {
+            picture(
+                &CoverageMap,
+                &scene,
+                &screen,
+                &cam,
+                Fill::Shade,
+                DrawOptions::picture(),
+                report,
+            )
         };
-        let with = m.run_with_progress(&scene, &screen, &cam, Fill::Shade, Some(&report));
+        let with = run(Some(&report));
         let calls = calls.borrow();
         let mut seen: Vec<&str> = calls.iter().map(|c| c.0).collect();
         seen.dedup();
@@ -107,7 +116,7 @@ fn the_bsp_method_reports_the_stages_it_runs_and_draws_the_same() {
             let of_stage: Vec<Call> = calls.iter().filter(|c| c.0 == *stage).copied().collect();
             check_stage(&of_stage, stage);
         }
-        let without = m.run(&scene, &screen, &cam, Fill::Shade);
+        let without = run(None);
         assert_eq!(with.drawing, without.drawing);
     }
 }

@@ -11,6 +11,7 @@ mod seam_measure;
 
 use seam_measure::{alpha_area, over_white, rasterize, rings_area, seam_defects};
 use sightline::camera::{Camera, CameraSpec, NamedView};
+use sightline::draw::{DrawOptions, picture};
 use sightline::output::drawing::Drawing;
 use sightline::output::svg::{SvgOptions, write_svg};
 use sightline::pipeline::{Fill, colorize_polys, prepare};
@@ -18,7 +19,7 @@ use sightline::project::CullMode;
 use sightline::raster::{EMPTY, zbuffer};
 use sightline::scene::Scene;
 use sightline::scene::primitives::{interlocked_tori, random_triangle_soup, sphere_scene};
-use sightline::visibility::{BspMethod, VisibilityMethod};
+use sightline::visibility::CoverageMap;
 
 fn camera(scene: &Scene, view: NamedView, size: (u32, u32)) -> Camera {
     CameraSpec {
@@ -30,26 +31,37 @@ fn camera(scene: &Scene, view: NamedView, size: (u32, u32)) -> Camera {
     .unwrap()
 }
 
-/// The picture as `render --method bsp -o X.svg` draws it, and the exact opaque visible area
+/// The picture as `render --method coverage -o X.svg` draws it, and the exact opaque visible area
 /// (the per-face drawing, as the JSON holds it).
 fn picture_and_exact_area(scene: &Scene, camera: &Camera) -> (Drawing, f64) {
     let screen = prepare(scene, camera, CullMode::Auto).screen;
-    let picture = BspMethod {
-        merge_surfaces: true,
-        seams: true,
-    }
-    .run(scene, &screen, camera, Fill::Shade)
+    let merged = picture(
+        &CoverageMap,
+        scene,
+        &screen,
+        camera,
+        Fill::Shade,
+        DrawOptions::picture(),
+        None,
+    )
     .drawing;
-    let per_face = BspMethod::default()
-        .run(scene, &screen, camera, Fill::Shade)
-        .drawing;
+    let per_face = picture(
+        &CoverageMap,
+        scene,
+        &screen,
+        camera,
+        Fill::Shade,
+        DrawOptions::per_face(),
+        None,
+    )
+    .drawing;
     let area = per_face
         .items
         .iter()
         .filter(|i| i.opacity >= 1.0)
         .map(|i| rings_area(&i.rings))
         .sum();
-    (picture, area)
+    (merged, area)
 }
 
 fn covered_alpha(d: &Drawing) -> f64 {

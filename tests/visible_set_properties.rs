@@ -58,6 +58,7 @@ use num_traits::{Signed, ToPrimitive, Zero};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestCaseError, TestError, TestRunner};
 use sightline::camera::{Camera, Projection};
+use sightline::draw::{DrawOptions, picture};
 use sightline::exact::polygon::{Piece, same_plane, separated};
 use sightline::exact::predicates::Line;
 use sightline::exact::{GridPoint, Plane};
@@ -65,8 +66,9 @@ use sightline::output::svg::{SvgOptions, write_svg};
 use sightline::pipeline::{Fill, prepare};
 use sightline::project::{CullMode, ScreenPoly, ScreenScene};
 use sightline::scene::{Scene, SceneBuilder, primitives};
-use sightline::visibility::bsp::{Bsp, VisibleSet, initial_pieces, visible_set};
-use sightline::visibility::{BspMethod, VisibilityMethod};
+use sightline::visibility::bsp::Bsp;
+use sightline::visibility::coverage_map::visible_set;
+use sightline::visibility::{CoverageMap, VisibleSet, initial_pieces};
 use std::cmp::Ordering;
 use std::f64::consts::TAU;
 use std::sync::atomic::{AtomicUsize, Ordering as AtomicOrdering};
@@ -1454,15 +1456,29 @@ fn check_determinism(case: &Case) -> Result<(), Skip> {
     for fill in [Fill::Shade, Fill::Id] {
         let options = SvgOptions::default();
         let a = write_svg(
-            &BspMethod::default()
-                .run(&s1.scene, &p1, &s1.camera, fill)
-                .drawing,
+            &picture(
+                &CoverageMap,
+                &s1.scene,
+                &p1,
+                &s1.camera,
+                fill,
+                DrawOptions::per_face(),
+                None,
+            )
+            .drawing,
             &options,
         );
         let b = write_svg(
-            &BspMethod::default()
-                .run(&s2.scene, &p2, &s2.camera, fill)
-                .drawing,
+            &picture(
+                &CoverageMap,
+                &s2.scene,
+                &p2,
+                &s2.camera,
+                fill,
+                DrawOptions::per_face(),
+                None,
+            )
+            .drawing,
             &options,
         );
         assert!(

@@ -2,6 +2,10 @@
 //! of the crate (it depends on the scene and the camera only), so that visibility strategies
 //! and renderers colour faces alike without depending on each other.
 //!
+//! Opacity is the one convention: a [`Paint`] has `opacity` in \[0, 1\] (1 = opaque), the
+//! material's `1 - transparency`, computed here once; every method (A-buffer blending, drawing
+//! items, SVG `fill-opacity`) reads it and none converts back.
+//!
 //! Flat fills and id colours. A face's flat colour is the seed 004 model ([`lighting`])
 //! at its centroid with its normal turned towards the viewer (open and two-sided surfaces are
 //! lit on the side that is seen). With directional lights only and no specular (the default:
@@ -11,7 +15,9 @@
 pub mod lighting;
 
 use crate::camera::Camera;
+use crate::project::ScreenScene;
 use crate::scene::Scene;
+use lighting::Lighting;
 
 /// How pixels are coloured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
@@ -34,25 +40,72 @@ pub const DIFFUSE: f64 = 0.8;
 ///
 /// [`Lighting::flat_color`]: lighting::Lighting::flat_color
 pub fn flat_color(scene: &Scene, face: usize, camera: &Camera) -> [f64; 3] {
-    lighting::Lighting::of_scene(scene, camera).flat_color(scene, &scene.faces[face], camera.eye)
+    Lighting::of_scene(scene, camera).flat_color(scene, &scene.faces[face], camera.eye)
 }
 
-/// The colour and the transparency (in [0, 1]) every method gives `scene.faces[face]`: its flat
-/// colour and its material's transparency, or with `Fill::Id` its id label, opaque (blending
-/// labels would show ids that do not exist).
-pub fn face_paint(scene: &Scene, face: usize, camera: &Camera, fill: Fill) -> ([f64; 3], f64) {
+/// What a face is filled with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Paint {
+    /// Linear RGB in \[0, 1\].
+    pub color: [f64; 3],
+    /// 1 = opaque, 0 = invisible: the material's `1 - transparency`.
+    pub opacity: f64,
+}
+
+impl Paint {
+    /// An opaque paint hides what is behind it; any other blends over it.
+    pub fn is_opaque(&self) -> bool {
+        self.opacity >= 1.0
+    }
+}
+
+/// The paint every method gives `scene.faces[face]`: its flat colour and its material's opacity,
+/// or with `Fill::Id` its id label, opaque (blending labels would show ids that do not exist).
+pub fn face_paint(scene: &Scene, face: usize, camera: &Camera, fill: Fill) -> Paint {
+    paint_with(
+        &Lighting::of_scene(scene, camera),
+        scene,
+        face,
+        camera,
+        fill,
+    )
+}
+
+/// Each screen polygon's paint ([`face_paint`] of its face), the lights set up once.
+pub fn screen_paints(
+    scene: &Scene,
+    screen: &ScreenScene,
+    camera: &Camera,
+    fill: Fill,
+) -> Vec<Paint> {
+    let lighting = Lighting::of_scene(scene, camera);
+    screen
+        .polys
+        .iter()
+        .map(|p| paint_with(&lighting, scene, p.face as usize, camera, fill))
+        .collect()
+}
+
+fn paint_with(
+    lighting: &Lighting,
+    scene: &Scene,
+    face: usize,
+    camera: &Camera,
+    fill: Fill,
+) -> Paint {
+    let f = &scene.faces[face];
     match fill {
-        Fill::Shade => {
-            let m = &scene.materials[scene.faces[face].material as usize];
-            (
-                flat_color(scene, face, camera),
-                m.transparency.clamp(0.0, 1.0),
-            )
-        }
-        Fill::Id => (
-            id_color(scene.faces[face].id).map(|c| c as f64 / 255.0),
-            0.0,
-        ),
+        Fill::Shade => Paint {
+            color: lighting.flat_color(scene, f, camera.eye),
+            opacity: 1.0
+                - scene.materials[f.material as usize]
+                    .transparency
+                    .clamp(0.0, 1.0),
+        },
+        Fill::Id => Paint {
+            color: id_color(f.id).map(|c| c as f64 / 255.0),
+            opacity: 1.0,
+        },
     }
 }
 

@@ -41,39 +41,14 @@ use super::sample::{self, DepthOrder};
 use crate::camera::Camera;
 use crate::exact::Fallbacks;
 use crate::paint::Fill;
-use crate::paint::face_paint;
 use crate::project::ScreenScene;
 use crate::scene::Scene;
 
-/// What a polygon's fragments carry besides depth.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Paint {
-    /// Linear RGB in [0, 1].
-    pub color: [f64; 3],
-    /// 0 = opaque, 1 = invisible (the scene material's transparency).
-    pub transparency: f64,
-}
+pub use crate::paint::Paint;
 
-impl Paint {
-    /// An opaque fragment hides what is behind it.
-    pub fn is_opaque(&self) -> bool {
-        self.transparency <= 0.0
-    }
-}
-
-/// Each screen polygon's paint: its face's colour and transparency ([`face_paint`]).
+/// Each screen polygon's paint (see [`crate::paint::screen_paints`]).
 pub fn paints(scene: &Scene, screen: &ScreenScene, camera: &Camera, fill: Fill) -> Vec<Paint> {
-    screen
-        .polys
-        .iter()
-        .map(|p| {
-            let (color, transparency) = face_paint(scene, p.face as usize, camera, fill);
-            Paint {
-                color,
-                transparency,
-            }
-        })
-        .collect()
+    crate::paint::screen_paints(scene, screen, camera, fill)
 }
 
 /// In which order polygons are rasterized. The image does not depend on it; memory does.
@@ -332,9 +307,10 @@ pub fn render(
     }
 }
 
-/// The seed's rule: `new = old·t + colour·(1 - t)`.
+/// The seed's rule `new = old·t + colour·(1 - t)` for transparency `t`, with opacity
+/// `a = 1 - t`: `new = old·(1 - a) + colour·a`.
 #[inline]
 fn blend(old: [f64; 3], paint: &Paint) -> [f64; 3] {
-    let t = paint.transparency;
-    std::array::from_fn(|k| old[k] * t + paint.color[k] * (1.0 - t))
+    let a = paint.opacity;
+    std::array::from_fn(|k| old[k] * (1.0 - a) + paint.color[k] * a)
 }

@@ -4,6 +4,7 @@
 pub mod abuffer;
 pub mod interpolate;
 pub mod lighting;
+pub mod renderer;
 pub mod sample;
 pub mod scanline;
 pub mod texture;

@@ -1,44 +1,28 @@
-//! The BSP strategy: exact visible sets and exact painter order, in screen space.
+//! The 3D BSP tree of a screen scene's pieces: an exact painter order, and a second way to the
+//! exact visible set.
 //!
-//! Every screen polygon becomes convex [`Piece`]s (non-convex faces are decomposed exactly).
-//! Then, by what the output needs:
+//! The pieces' support planes are the splitters; a piece that straddles a splitter is split
+//! exactly (interpenetration and cyclic overlap resolve here). After perspective the view is
+//! orthographic along +z, so for every support plane (c > 0) the viewer is on its negative side:
+//! negative subtree, the node's own pieces, positive subtree is front to back, with no plane test
+//! in the walk. Vertical screen lines also serve as splitters where support planes would leave
+//! the tree unbalanced (the faces of a convex mesh never separate one another).
 //!
-//! - **Opaque scenes** ([`visible_set`]): the pieces go, nearest first, into the depth-aware
-//!   coverage map ([`super::coverage`]), which splits two overlapping pieces by the line where
-//!   their planes meet and keeps the nearer side of each. No tree is built: on interpenetrating
-//!   soups a BSP cuts each triangle by the plane of every other it straddles (100 random
-//!   triangles gave 7,100 fragments, 1,000 gave 3.1 million), while the coverage map only makes
-//!   the splits the visible result has (818 and 7,287 pieces), and it is about twice as fast on
-//!   closed meshes too.
-//! - **Translucent scenes** ([`layers`]): the opaque faces' visible set as above, then the
-//!   translucent faces' fragments in depth order ([`Bsp::back_to_front`]), each cut to its parts
-//!   that no opaque face hides ([`Coverage::unhidden_parts`]), to blend over it. A 3D BSP tree is
-//!   built with the pieces' support planes as splitters; a piece that
-//!   straddles a splitter is split exactly (interpenetration and cyclic overlap resolve here).
-//!   After perspective the view is orthographic along +z, so for every support plane (c > 0) the
-//!   viewer is on its negative side: negative subtree, the node's own pieces, positive subtree
-//!   is front to back. [`Bsp::visible_set`] walks it front to back through the coverage map:
-//!   a second, independent exact visible set that the tests hold against the first.
+//! Invariant of the tree: walking it front to back ([`Bsp::front_to_back`]) visits every
+//! fragment after every fragment that can hide part of it. Coplanar overlapping pieces are
+//! ordered by the larger face id first (then the later polygon), the z-buffer's tie rule.
 //!
-//! Invariants of the [`VisibleSet`]: its pieces are convex, have disjoint interiors, each lies in
-//! the projection of its own face, and at every point of a piece no other face is nearer. Pieces
-//! lying in one plane and overlapping are ordered by the larger face id first (then the later
-//! polygon), the z-buffer's tie rule: output never depends on input order.
+//! Used by the [`super::BspTree`] strategy (the whole visible set through the tree) and by every
+//! exact strategy for the back-to-front order of translucent faces.
 
-use super::coverage::{Coverage, CoverageStats, bounds, tie_key};
-use super::regions::{outline, regions, regions_of, shared_vertex_pixels, surfaces};
-use super::seams::shared_edges;
-use crate::camera::Camera;
-use crate::exact::polygon::{Piece, Split, convex_pieces, separated};
-use crate::exact::predicates::{Line, line_side};
-use crate::exact::{GridPoint, Plane, Samples};
-use crate::output::drawing::{DrawItem, Drawing, SeamStroke, Seams};
-use crate::paint::Fill;
+use super::coverage::{Coverage, bounds, tie_key};
+use super::initial_pieces;
+use super::visible_set::{Fragment, VisibleSet};
+use crate::exact::Plane;
+use crate::exact::polygon::{Piece, Split, separated};
+use crate::exact::predicates::Line;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
-use crate::scene::Scene;
-use std::cmp::Ordering;
-use std::collections::BTreeMap;
 
 /// Counters of one BSP run.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -55,8 +39,6 @@ pub struct BspStats {
     pub depth: usize,
     /// Visible pieces after the coverage pass.
     pub visible_pieces: usize,
-    /// Nodes of the 2D coverage tree.
-    pub coverage_nodes: usize,
 }
 
 /// A splitter's node. The viewer is on every support plane's negative side, so the walk needs
@@ -72,30 +54,6 @@ struct Node {
 pub struct Bsp {
     nodes: Vec<Node>,
     pub stats: BspStats,
-}
-
-/// Exact visible regions: disjoint convex pieces, each with its screen polygon.
-#[derive(Clone, Debug, Default)]
-pub struct VisibleSet {
-    pub pieces: Vec<Piece>,
-}
-
-/// The convex pieces of every screen polygon.
-pub fn initial_pieces(screen: &ScreenScene) -> Vec<Piece> {
-    let mut out = Vec::with_capacity(screen.polys.len());
-    for (i, p) in screen.polys.iter().enumerate() {
-        let pts = screen.corners(p);
-        // Pieces are counter-clockwise (y up): back faces seen from behind run the other way.
-        let ccw: Vec<GridPoint> = if crate::exact::twice_signed_area(pts) > 0 {
-            pts.to_vec()
-        } else {
-            pts.iter().rev().copied().collect()
-        };
-        for convex in convex_pieces(&ccw) {
-            out.push(Piece::from_convex(i as u32, p.plane, &convex));
-        }
-    }
-    out
 }
 
 /// What a node splits by.
@@ -353,356 +311,40 @@ impl Bsp {
         all
     }
 
-    /// The exact visible set: pieces front to back, each minus the visible pieces in front.
-    pub fn visible_set(&mut self, screen: &ScreenScene) -> VisibleSet {
+    /// The coverage map of every piece, inserted front to back: each minus the visible pieces
+    /// in front ([`Coverage::insert_behind`]).
+    pub fn coverage<'a>(&self, screen: &'a ScreenScene) -> Coverage<'a> {
         let mut order = Vec::with_capacity(self.stats.fragments);
         self.front_to_back(|p| order.push(p.clone()));
         let mut coverage = Coverage::new(screen, &order);
         for p in order {
             coverage.insert_behind(p);
         }
-        let pieces = coverage.into_pieces();
+        coverage
+    }
+
+    /// The exact visible set: pieces front to back, each minus the visible pieces in front.
+    pub fn visible_set(&mut self, screen: &ScreenScene) -> VisibleSet {
+        let pieces = self.coverage(screen).into_pieces();
         self.stats.visible_pieces = pieces.len();
-        VisibleSet { pieces }
+        VisibleSet::of_pieces(pieces)
     }
 }
 
-/// The exact visible set, the fast way: the pieces, nearest corner first, go into the coverage
-/// map in that order and resolve overlaps by depth as they meet ([`Coverage::insert`]). No BSP
-/// is built, so interpenetrating soups cost what their visible arrangement needs. The nearest
-/// first order only saves work (most pieces then meet only nearer ones); it decides nothing.
-pub fn visible_set(screen: &ScreenScene) -> (VisibleSet, CoverageStats) {
-    visible_set_with_progress(screen, None)
-}
-
-/// [`visible_set`], reporting stage "visible set": pieces inserted into the coverage map of
-/// all the pieces.
-pub fn visible_set_with_progress(
+/// The parts of the translucent pieces `see_through` that no piece of `opaque` (the opaque
+/// faces' coverage map) hides, back to front in the exact order of a 3D BSP of the translucent
+/// pieces alone: each blends over everything drawn before it, and over nothing that should hide
+/// it. Reports stage "painter order".
+pub fn translucent_layer(
     screen: &ScreenScene,
+    opaque: &mut Coverage,
+    see_through: Vec<Piece>,
     report: Option<Report>,
-) -> (VisibleSet, CoverageStats) {
-    let coverage = coverage_of(screen, initial_pieces(screen), report);
-    let stats = coverage.stats.clone();
-    (
-        VisibleSet {
-            pieces: coverage.into_pieces(),
-        },
-        stats,
-    )
-}
-
-/// The coverage map of `pieces`, inserted nearest corner first (see [`visible_set`]),
-/// reporting stage "visible set".
-fn coverage_of<'a>(
-    screen: &'a ScreenScene,
-    mut pieces: Vec<Piece>,
-    report: Option<Report>,
-) -> Coverage<'a> {
-    let near: Vec<i32> = screen
-        .polys
-        .iter()
-        .map(|p| screen.corners(p).iter().map(|c| c.z).min().unwrap_or(0))
-        .collect();
-    pieces.sort_by_key(|p| (near[p.poly as usize], tie_key(screen, p)));
-    let mut coverage = Coverage::new(screen, &pieces);
-    let mut ticker = Ticker::new(report, "visible set", pieces.len() as u64);
-    for (i, p) in pieces.into_iter().enumerate() {
-        coverage.insert(p);
-        ticker.tick(i as u64 + 1);
-    }
-    ticker.finish();
-    coverage
-}
-
-/// A scene with translucent faces, in two layers: what is drawn first, and what blends over it.
-#[derive(Clone, Debug, Default)]
-pub struct Layers {
-    /// The exact visible set of the opaque faces alone.
-    pub opaque: VisibleSet,
-    /// The parts of the translucent faces' fragments that no opaque face hides, back to front
-    /// in the exact order of a 3D BSP of the translucent faces: each blends over everything
-    /// drawn before it, and over nothing that should hide it.
-    pub translucent: Vec<Piece>,
-    pub coverage: CoverageStats,
-    pub bsp: BspStats,
-}
-
-/// The [`Layers`] of `screen`, where `translucent(poly)` says which screen polygons blend,
-/// reporting stages "visible set" (the opaque faces) and "painter order" (the translucent ones).
-pub fn layers(
-    screen: &ScreenScene,
-    translucent: impl Fn(u32) -> bool,
-    report: Option<Report>,
-) -> Layers {
-    let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
-        .into_iter()
-        .partition(|p| translucent(p.poly));
-    let mut coverage = coverage_of(screen, opaque, report);
+) -> (Vec<Fragment>, BspStats) {
     let bsp = Bsp::build_from(screen, see_through, report);
-    let mut fragments = Vec::new();
+    let mut parts = Vec::new();
     for f in bsp.back_to_front() {
-        coverage.unhidden_parts(f, &mut fragments);
+        opaque.unhidden_parts(f, &mut parts);
     }
-    Layers {
-        coverage: coverage.stats.clone(),
-        opaque: VisibleSet {
-            pieces: coverage.into_pieces(),
-        },
-        translucent: fragments,
-        bsp: bsp.stats,
-    }
-}
-
-impl VisibleSet {
-    /// The face id at every pixel centre (row-major, row 0 at the top), decided exactly: a
-    /// sample on a boundary between pieces goes to the earlier piece.
-    pub fn face_ids(&self, screen: &ScreenScene) -> Vec<Option<u32>> {
-        let (w, h) = (screen.width as i64, screen.height as i64);
-        let s = Samples::new(screen.width, screen.height);
-        let mut ids: Vec<Option<u32>> = vec![None; (w * h) as usize];
-        for piece in &self.pieces {
-            let v = piece.vertices_f64();
-            let (mut c0, mut c1, mut r0, mut r1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-            for [x, y] in &v {
-                c0 = c0.min(s.col_of(*x));
-                c1 = c1.max(s.col_of(*x));
-                r0 = r0.min(s.row_of(*y));
-                r1 = r1.max(s.row_of(*y));
-            }
-            let i0 = ((c0 - 1.0).floor() as i64).clamp(0, w);
-            let i1 = ((c1 + 1.0).ceil() as i64).clamp(0, w);
-            let j0 = ((r0 - 1.0).floor() as i64).clamp(0, h);
-            let j1 = ((r1 + 1.0).ceil() as i64).clamp(0, h);
-            let id = screen.polys[piece.poly as usize].id;
-            for j in j0..j1 {
-                // The sample row y = y_num/H as the line H·y - y_num = 0.
-                let row = Line::Edge(Plane {
-                    a: 0,
-                    b: h,
-                    c: 0,
-                    d: -(s.y_num(j) as i128),
-                });
-                for i in i0..i1 {
-                    let k = (j * w + i) as usize;
-                    if ids[k].is_some() {
-                        continue;
-                    }
-                    let col = Line::Edge(Plane {
-                        a: w,
-                        b: 0,
-                        c: 0,
-                        d: -(s.x_num(i) as i128),
-                    });
-                    let inside = piece
-                        .lines
-                        .iter()
-                        .all(|l| line_side([&col, &row], l) != Some(Ordering::Less));
-                    if inside {
-                        ids[k] = Some(id);
-                    }
-                }
-            }
-        }
-        ids
-    }
-
-    /// The pieces' vertices in pixel coordinates (y down), rounded once: for drawing.
-    pub fn pixel_rings(&self, screen: &ScreenScene) -> Vec<(u32, Vec<[f64; 2]>)> {
-        let s = Samples::new(screen.width, screen.height);
-        self.pieces
-            .iter()
-            .map(|p| {
-                let ring = p
-                    .vertices_f64()
-                    .into_iter()
-                    .map(|[x, y]| [s.col_of(x), s.row_of(y)])
-                    .collect();
-                (p.poly, ring)
-            })
-            .collect()
-    }
-}
-
-/// The BSP strategy behind the common trait. Opaque scenes draw the exact visible set; a scene
-/// with translucent faces (under `Fill::Shade`) draws its [`layers`]: the opaque faces' exact
-/// visible set, then the translucent fragments in front of it, back to front in the BSP's exact
-/// order, so each blends over exactly what lies behind it. Consecutive fragments of one face
-/// are one item, so a viewer never blends their common edges twice.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct BspMethod {
-    /// Draw abutting visible regions of coplanar faces with the same colour and material as one
-    /// region (listing every face it covers), so that viewers' anti-aliasing shows no cracks
-    /// inside a surface (a CAD face triangulated in the file). Off: one region set per face, as
-    /// per-face output (JSON) needs.
-    pub merge_surfaces: bool,
-    /// Also find the boundaries that two opaque regions share ([`Seams`]), painted
-    /// under the fills of vector output so that anti-aliasing shows no seams between regions.
-    pub seams: bool,
-}
-
-impl super::VisibilityMethod for BspMethod {
-    fn name(&self) -> &'static str {
-        "bsp"
-    }
-
-    fn exact(&self) -> bool {
-        true
-    }
-
-    fn run(
-        &self,
-        scene: &Scene,
-        screen: &ScreenScene,
-        camera: &Camera,
-        fill: Fill,
-    ) -> super::VisibilityResult {
-        self.run_with_progress(scene, screen, camera, fill, None)
-    }
-}
-
-impl BspMethod {
-    /// [`super::VisibilityMethod::run`], reporting the progress of its long stages: "visible
-    /// set", "painter order" (translucent scenes), "regions" (see [`crate::progress`]).
-    pub fn run_with_progress(
-        &self,
-        scene: &Scene,
-        screen: &ScreenScene,
-        camera: &Camera,
-        fill: Fill,
-        report: Option<Report>,
-    ) -> super::VisibilityResult {
-        let fallbacks = crate::exact::predicates::fallback_count();
-        // Colour and opacity of every screen polygon, once.
-        let paints: Vec<([f64; 3], f64)> = screen
-            .polys
-            .iter()
-            .map(|poly| super::face_paint(scene, poly.face as usize, camera, fill))
-            .collect();
-        let blends = |poly: u32| paints[poly as usize].1 < 1.0;
-        let translucent = (0..screen.polys.len() as u32).any(blends);
-        let mut stats = serde_json::Map::new();
-        let mut put = |k: &str, v: serde_json::Value| {
-            stats.insert(k.to_string(), v);
-        };
-        put("polygons", screen.polys.len().into());
-        put("translucent_painter_order", translucent.into());
-        let (opaque, see_through) = if translucent {
-            let l = layers(screen, blends, report);
-            put("pieces", (l.coverage.inserted + l.bsp.pieces).into());
-            put("visible_pieces", l.opaque.pieces.len().into());
-            put("fragments", l.bsp.fragments.into());
-            put("bsp_nodes", l.bsp.nodes.into());
-            put("bsp_depth", l.bsp.depth.into());
-            put("translucent_parts", l.translucent.len().into());
-            (l.opaque.pieces, l.translucent)
-        } else {
-            let (visible, cs) = visible_set_with_progress(screen, report);
-            put("pieces", cs.inserted.into());
-            put("visible_pieces", visible.pieces.len().into());
-            put("replaced", cs.replaced.into());
-            put("overlap_tests", cs.overlap_tests.into());
-            (visible.pieces, Vec::new())
-        };
-        // Visible opaque pieces and translucent parts: what is drawn, per polygon.
-        put(
-            "drawn_pieces_per_polygon",
-            ((opaque.len() + see_through.len()) as f64 / screen.polys.len().max(1) as f64).into(),
-        );
-        put(
-            "exact_fallbacks",
-            (crate::exact::predicates::fallback_count() - fallbacks).into(),
-        );
-        // The regions of a group are drawn as one item: one face, or (merging) one surface of
-        // coplanar faces of one paint. One paint is what the output shows: the 8-bit colour,
-        // material and opacity.
-        let group: Vec<u32> = if self.merge_surfaces {
-            surfaces(scene, screen, camera.eye, |i| {
-                let (color, opacity) = paints[i];
-                (
-                    crate::paint::to_u8(color),
-                    scene.faces[screen.polys[i].face as usize].material,
-                    opacity.to_bits(),
-                )
-            })
-        } else {
-            screen.polys.iter().map(|p| p.id).collect()
-        };
-        let item = |poly: u32, faces: &[u32], rings: Vec<Vec<[f64; 2]>>| {
-            let (color, opacity) = paints[poly as usize];
-            DrawItem {
-                face: faces[0],
-                merged: faces[1..].to_vec(),
-                material: scene.faces[screen.polys[poly as usize].face as usize].material,
-                rings,
-                color,
-                opacity,
-            }
-        };
-        let group_of = |p: &Piece| group[p.poly as usize];
-        // One rounding per exact vertex, for the regions, the outline and the seams alike.
-        let vertices = shared_vertex_pixels(&opaque, &Samples::new(screen.width, screen.height));
-        let mut items: Vec<DrawItem> = regions_of(&opaque, &vertices, screen, group_of, report)
-            .into_iter()
-            .map(|r| item(opaque[r.piece].poly, &r.faces, r.rings))
-            .collect();
-        for run in see_through.chunk_by(|a, b| a.poly == b.poly) {
-            let rings = regions(run, screen, |_| ())
-                .into_iter()
-                .flat_map(|r| r.rings)
-                .collect();
-            items.push(item(
-                run[0].poly,
-                &[screen.polys[run[0].poly as usize].id],
-                rings,
-            ));
-        }
-        let seams = if self.seams {
-            let color = |p: &Piece| paints[p.poly as usize].0;
-            Seams {
-                strokes: seam_strokes(&opaque, &vertices, &group_of, &color),
-                outline: outline(&opaque, &vertices),
-            }
-        } else {
-            Seams::default()
-        };
-        super::VisibilityResult {
-            drawing: Drawing {
-                width: screen.width,
-                height: screen.height,
-                background: super::background(fill),
-                items,
-                seams,
-            },
-            stats,
-        }
-    }
-}
-
-/// The boundaries that opaque pieces of different groups share, stroked in the darker of the
-/// two colours (8-bit, then the smaller), one [`SeamStroke`] per colour in colour order.
-fn seam_strokes(
-    pieces: &[Piece],
-    vertices: &[Vec<[f64; 2]>],
-    group: &dyn Fn(&Piece) -> u32,
-    color: &dyn Fn(&Piece) -> [f64; 3],
-) -> Vec<SeamStroke> {
-    use crate::paint::to_u8;
-    let mut by_color: BTreeMap<[u8; 3], SeamStroke> = BTreeMap::new();
-    for e in shared_edges(pieces, vertices, |i| group(&pieces[i])) {
-        let [ca, cb] = e.pieces.map(|i| color(&pieces[i]));
-        let key = |c: [f64; 3]| {
-            let u = to_u8(c);
-            (u.iter().map(|&v| v as u32).sum::<u32>(), u)
-        };
-        let c = if key(cb) < key(ca) { cb } else { ca };
-        by_color
-            .entry(to_u8(c))
-            .or_insert_with(|| SeamStroke {
-                color: c,
-                segments: Vec::new(),
-            })
-            .segments
-            .push(e.ends);
-    }
-    by_color.into_values().collect()
+    (parts.into_iter().map(Fragment::Piece).collect(), bsp.stats)
 }

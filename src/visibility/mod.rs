@@ -1,93 +1,84 @@
-//! Visibility strategies behind one trait, so the CLI, the tests and the benchmarks can run any of
-//! them on the same projected scene and compare the results.
+//! Object-space visibility: strategies that compute a [`VisibleSet`] from a projected scene,
+//! behind one trait, so the CLI, the tests and the benchmarks run any of them alike and compare
+//! the results. What the set looks like on a page is [`crate::draw`]'s job, done once for all.
 //!
-//! Invariants of every [`VisibilityResult`]:
-//! - its [`Drawing`] has the camera's size, pixel coordinates with y down, and items in painter
-//!   order (each drawn over the ones before it), each carrying the input face id it came from;
-//! - for a method whose [`VisibilityMethod::exact`] is true, the drawing rasterized at pixel
-//!   centres ([`crate::output::raster_drawing::face_ids`]) shows the z-buffer's face id at every
-//!   interior pixel (a pixel whose 3x3 neighbourhood in the z-buffer image holds one id).
-//!   Approximate methods (the [`Painter`] baseline) make no such promise: they are measured.
+//! Every exact strategy starts from the convex pieces of the screen polygons
+//! ([`initial_pieces`]) and keeps the [`visible_set`] invariants; an approximate one (the
+//! [`Painter`]) keeps their shape and is measured against the exact ones.
 //!
-//! Grid polygons become pixel rings through [`pixel_ring`], which is exact: a grid coordinate
-//! has at most 24 significant bits and the image side at most 15, so `Samples::col_of` and
-//! `Samples::row_of` compute their products and sums without rounding.
+//! | strategy | name | idea |
+//! |---|---|---|
+//! | [`CoverageMap`] | `coverage` | pieces into a depth-aware coverage map, overlaps split where their planes meet |
+//! | [`BspTree`] | `bsp` | a 3D BSP of the pieces walked front to back into the coverage map |
+//! | [`Painter`] | `painter` | whole faces sorted by farthest depth (approximate) |
+//!
+//! Adding a strategy: one file implementing [`Strategy`], listed once in the method registry
+//! ([`crate::methods`]).
 
 pub mod bsp;
+pub mod bsp_tree;
 pub mod coverage;
-mod grid;
+pub mod coverage_map;
+pub(crate) mod grid;
 pub mod painter;
-pub mod regions;
-pub mod seams;
+pub mod visible_set;
 
-pub use bsp::BspMethod;
+pub use bsp_tree::BspTree;
+pub use coverage_map::CoverageMap;
 pub use painter::Painter;
+pub use visible_set::{Fragment, Stats, VisibleSet};
 
-use crate::camera::Camera;
+use crate::exact::polygon::{Piece, convex_pieces};
 use crate::exact::{GridPoint, Samples};
-use crate::output::drawing::Drawing;
-use crate::paint::Fill;
+use crate::progress::Report;
 use crate::project::ScreenScene;
-use crate::scene::Scene;
 
-/// A visibility strategy.
-pub trait VisibilityMethod {
-    /// Short name, as the CLI spells it.
-    fn name(&self) -> &'static str;
-    /// True for methods whose result is exact (interior mismatch against the z-buffer must be 0).
-    fn exact(&self) -> bool;
-    /// Computes the drawing of `screen` (the projection of `scene` by `camera`).
-    fn run(
+/// An object-space visibility strategy. Its name and whether it is exact (keeps every
+/// [`visible_set`] invariant) are in the method registry ([`crate::methods`]).
+pub trait Strategy: Send + Sync {
+    /// What the camera sees of `screen`. `translucent(k)`: does `screen.polys[k]` blend over what
+    /// lies behind it (then it is layered, not hidden)? `report` gets the progress of the long
+    /// stages (see [`crate::progress`]).
+    fn visible_set(
         &self,
-        scene: &Scene,
         screen: &ScreenScene,
-        camera: &Camera,
-        fill: Fill,
-    ) -> VisibilityResult;
+        translucent: &dyn Fn(u32) -> bool,
+        report: Option<Report>,
+    ) -> VisibleSet;
 }
 
-/// What a method produced: the drawing and its own counters (timings, splits, fallbacks).
-#[derive(Clone, Debug, PartialEq)]
-pub struct VisibilityResult {
-    pub drawing: Drawing,
-    pub stats: serde_json::Map<String, serde_json::Value>,
+/// Is any polygon of `screen` translucent?
+fn translucent_polygons(screen: &ScreenScene, translucent: &dyn Fn(u32) -> bool) -> bool {
+    (0..screen.polys.len() as u32).any(translucent)
 }
 
-/// Every strategy, in the order the CLI lists them.
-pub fn methods() -> Vec<Box<dyn VisibilityMethod>> {
-    vec![Box::new(BspMethod::default()), Box::new(Painter)]
+/// The convex pieces of every screen polygon, counter-clockwise (y up); non-convex polygons are
+/// decomposed exactly.
+pub fn initial_pieces(screen: &ScreenScene) -> Vec<Piece> {
+    let mut out = Vec::with_capacity(screen.polys.len());
+    for (i, p) in screen.polys.iter().enumerate() {
+        let pts = screen.corners(p);
+        // Back faces seen from behind run clockwise on screen.
+        let ccw: Vec<GridPoint> = if crate::exact::twice_signed_area(pts) > 0 {
+            pts.to_vec()
+        } else {
+            pts.iter().rev().copied().collect()
+        };
+        for convex in convex_pieces(&ccw) {
+            out.push(Piece::from_convex(i as u32, p.plane, &convex));
+        }
+    }
+    out
 }
 
-/// The strategy called `name`, if any.
-pub fn method_by_name(name: &str) -> Option<Box<dyn VisibilityMethod>> {
-    methods().into_iter().find(|m| m.name() == name)
-}
-
-/// A grid polygon as a pixel ring (y down, the last point not repeated). Exact: see the module
-/// docs.
+/// A grid polygon as a pixel ring (y down, the last point not repeated). Exact: a grid
+/// coordinate has at most 24 significant bits and the image side at most 15, so
+/// `Samples::col_of` and `Samples::row_of` compute their products and sums without rounding.
 pub fn pixel_ring(samples: &Samples, corners: &[GridPoint]) -> Vec<[f64; 2]> {
     corners
         .iter()
         .map(|p| [samples.col_of(p.x as f64), samples.row_of(p.y as f64)])
         .collect()
-}
-
-/// The colour and opacity every method gives a face ([`paint::face_paint`], with opacity
-/// `1 - transparency`).
-///
-/// [`paint::face_paint`]: crate::paint::face_paint
-pub fn face_paint(scene: &Scene, face: usize, camera: &Camera, fill: Fill) -> ([f64; 3], f64) {
-    let (color, transparency) = crate::paint::face_paint(scene, face, camera, fill);
-    (color, 1.0 - transparency)
-}
-
-/// The background every method uses: black for `Fill::Id` (the id contract), none otherwise
-/// (the caller decides).
-pub fn background(fill: Fill) -> Option<[f64; 3]> {
-    match fill {
-        Fill::Id => Some([0.0; 3]),
-        Fill::Shade => None,
-    }
 }
 
 #[cfg(test)]

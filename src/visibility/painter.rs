@@ -6,69 +6,38 @@
 //! faces, and need not be even without them (a long face reaching far back sorts behind a small
 //! face it covers).
 //!
-//! Invariant: one [`DrawItem`] per screen polygon, its ring the polygon's exact pixel ring, in an
+//! Invariant: one fragment per screen polygon (drawn as the polygon's exact pixel ring), in an
 //! order fixed by the input alone: farthest corner depth (largest grid z) first; ties by nearest
 //! corner depth, farthest first; then by face id, smaller first (as the z-buffer's tie rule lets
 //! the larger id win); then by polygon index. The order never flickers between runs.
 
-use super::{VisibilityMethod, VisibilityResult, background, face_paint, pixel_ring};
-use crate::camera::Camera;
-use crate::exact::Samples;
-use crate::output::drawing::{DrawItem, Drawing};
-use crate::paint::Fill;
+use super::Strategy;
+use super::visible_set::{Fragment, Stats, VisibleSet};
+use crate::progress::Report;
 use crate::project::ScreenScene;
-use crate::scene::Scene;
 use std::cmp::Reverse;
 
-/// Depth-sort painter (approximate baseline).
+/// Depth-sort painter (approximate baseline): every polygon a [`Fragment::Polygon`], layered in
+/// [`painter_order`], translucent or not.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Painter;
 
-impl VisibilityMethod for Painter {
-    fn name(&self) -> &'static str {
-        "painter"
-    }
-
-    fn exact(&self) -> bool {
-        false
-    }
-
-    fn run(
+impl Strategy for Painter {
+    fn visible_set(
         &self,
-        scene: &Scene,
         screen: &ScreenScene,
-        camera: &Camera,
-        fill: Fill,
-    ) -> VisibilityResult {
-        let order = painter_order(screen);
-
-        let samples = Samples::new(screen.width, screen.height);
-        let items: Vec<DrawItem> = order
-            .iter()
-            .map(|&k| {
-                let p = &screen.polys[k];
-                let (color, opacity) = face_paint(scene, p.face as usize, camera, fill);
-                DrawItem {
-                    face: p.id,
-                    merged: Vec::new(),
-                    material: scene.faces[p.face as usize].material,
-                    rings: vec![pixel_ring(&samples, screen.corners(p))],
-                    color,
-                    opacity,
-                }
-            })
+        _translucent: &dyn Fn(u32) -> bool,
+        _report: Option<Report>,
+    ) -> VisibleSet {
+        let layered: Vec<Fragment> = painter_order(screen)
+            .into_iter()
+            .map(|k| Fragment::Polygon(k as u32))
             .collect();
-
-        let mut stats = serde_json::Map::new();
-        stats.insert("faces_drawn".into(), items.len().into());
-        VisibilityResult {
-            drawing: Drawing {
-                width: screen.width,
-                height: screen.height,
-                background: background(fill),
-                items,
-                seams: Default::default(),
-            },
+        let mut stats = Stats::new();
+        stats.insert("faces_drawn".into(), layered.len().into());
+        VisibleSet {
+            pieces: Vec::new(),
+            layered,
             stats,
         }
     }

@@ -5,13 +5,13 @@
 //! their vertices (pixel coordinates rounded once, geo's union moving points by far less than a
 //! millionth of a pixel), and each region lists the input faces whose pieces lie in it.
 
-use super::coverage::bounds;
-use super::grid::for_each_near;
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
+use crate::visibility::coverage::bounds;
+use crate::visibility::grid::for_each_near;
 use glam::DVec3;
 use std::cmp::Ordering;
 use std::collections::BTreeMap;

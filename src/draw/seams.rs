@@ -10,9 +10,9 @@
 //! from the pieces' implicit vertices; only the endpoints written out are rounded (to pixels).
 //! Boundaries against nothing (the silhouette) or between pieces of one group are never returned.
 
-use super::coverage::bounds;
-use super::grid::for_each_near;
 use crate::exact::polygon::Piece;
+use crate::visibility::coverage::bounds;
+use crate::visibility::grid::for_each_near;
 use std::cmp::Ordering;
 use std::collections::HashMap;
 
@@ -159,8 +159,8 @@ fn shared_part(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::draw::regions::shared_vertex_pixels;
     use crate::exact::{GridPoint, Plane, Samples};
-    use crate::visibility::regions::shared_vertex_pixels;
 
     fn piece(poly: u32, corners: &[[i32; 2]]) -> Piece {
         let gp: Vec<GridPoint> = corners

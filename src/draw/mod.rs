@@ -1,0 +1,214 @@
+//! The drawing stage: a [`VisibleSet`] becomes a [`Drawing`] (filled regions in pixel
+//! coordinates, back to front), the same way whichever strategy computed it.
+//!
+//! Steps: each visible piece's vertices are rounded to pixels once ([`regions::shared_vertex_pixels`],
+//! so abutting pieces share their rounded vertices); the pieces of a group (one face, or with
+//! [`DrawOptions::merge_surfaces`] one surface of coplanar faces of one paint,
+//! [`regions::surfaces`]) are united into regions with holes ([`regions`]); the layered
+//! fragments follow, one item per run of one polygon, so a viewer never blends their common
+//! edges twice; with [`DrawOptions::seams`], the boundaries that opaque regions share are
+//! collected as strokes under the fills ([`seams`]).
+//!
+//! Invariant: the output rounding (one f64 rounding per exact vertex, then geo's union, far below
+//! a millionth of a pixel) is the only approximation between the visible set and the drawing;
+//! items keep the visible set's order (opaque regions, then the layered fragments).
+
+pub mod regions;
+pub mod seams;
+
+use crate::camera::Camera;
+use crate::exact::Samples;
+use crate::exact::polygon::Piece;
+use crate::output::drawing::{DrawItem, Drawing, SeamStroke, Seams};
+use crate::paint::{Fill, Paint, to_u8};
+use crate::progress::Report;
+use crate::project::ScreenScene;
+use crate::scene::Scene;
+use crate::visibility::{Fragment, Stats, Strategy, VisibleSet, pixel_ring};
+use regions::{outline, regions, regions_of, shared_vertex_pixels, surfaces};
+use std::collections::BTreeMap;
+
+/// How a visible set is drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DrawOptions {
+    /// Draw abutting visible regions of coplanar faces with the same colour and material as one
+    /// region (listing every face it covers), so that viewers' anti-aliasing shows no cracks
+    /// inside a surface (a CAD face triangulated in the file). Off: one region set per face, as
+    /// per-face output (JSON) needs.
+    pub merge_surfaces: bool,
+    /// Also find the boundaries that two opaque regions share ([`Seams`]), painted under the
+    /// fills of vector output so that anti-aliasing shows no seams between regions.
+    pub seams: bool,
+    /// The drawing's background, `None` for transparent.
+    pub background: Option<[f64; 3]>,
+}
+
+impl DrawOptions {
+    /// For pictures (SVG, PNG): surfaces merged, seams filled.
+    pub fn picture() -> Self {
+        DrawOptions {
+            merge_surfaces: true,
+            seams: true,
+            background: None,
+        }
+    }
+
+    /// For per-face output (JSON, face ids): one region set per face, no seams.
+    pub fn per_face() -> Self {
+        DrawOptions::default()
+    }
+
+    /// The same, on the background `fill` requires: black under `Fill::Id` (the id contract:
+    /// black is no face), `background` otherwise.
+    pub fn with_background(self, fill: Fill, background: Option<[f64; 3]>) -> Self {
+        DrawOptions {
+            background: match fill {
+                Fill::Id => Some([0.0; 3]),
+                Fill::Shade => background,
+            },
+            ..self
+        }
+    }
+}
+
+/// A strategy's drawing and its counters.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Picture {
+    pub drawing: Drawing,
+    pub stats: Stats,
+}
+
+/// The whole object-space path in one call: paints of `fill`, `strategy`'s visible set (the
+/// faces whose paint is not opaque layered), its drawing with `options` (and the background
+/// `fill` requires, [`DrawOptions::with_background`]). Reports the strategy's stages and
+/// "regions".
+pub fn picture(
+    strategy: &dyn Strategy,
+    scene: &Scene,
+    screen: &ScreenScene,
+    camera: &Camera,
+    fill: Fill,
+    options: DrawOptions,
+    report: Option<Report>,
+) -> Picture {
+    let paints = crate::paint::screen_paints(scene, screen, camera, fill);
+    let visible = strategy.visible_set(screen, &|k| !paints[k as usize].is_opaque(), report);
+    let options = options.with_background(fill, options.background);
+    Picture {
+        drawing: draw(scene, screen, camera, &paints, &visible, options, report),
+        stats: visible.stats,
+    }
+}
+
+/// The drawing of `visible`, a visible set of `screen` (the projection of `scene` by `camera`);
+/// `paints[k]` fills `screen.polys[k]` ([`crate::paint::screen_paints`]). Reports stage
+/// "regions".
+pub fn draw(
+    scene: &Scene,
+    screen: &ScreenScene,
+    camera: &Camera,
+    paints: &[Paint],
+    visible: &VisibleSet,
+    options: DrawOptions,
+    report: Option<Report>,
+) -> Drawing {
+    assert_eq!(paints.len(), screen.polys.len(), "one paint per polygon");
+    let opaque = &visible.pieces;
+    // The regions of a group are drawn as one item: one face, or (merging) one surface of
+    // coplanar faces of one paint. One paint is what the output shows: the 8-bit colour,
+    // material and opacity.
+    let group: Vec<u32> = if options.merge_surfaces {
+        surfaces(scene, screen, camera.eye, |i| {
+            let p = paints[i];
+            (
+                to_u8(p.color),
+                scene.faces[screen.polys[i].face as usize].material,
+                p.opacity.to_bits(),
+            )
+        })
+    } else {
+        screen.polys.iter().map(|p| p.id).collect()
+    };
+    let item = |poly: u32, faces: &[u32], rings: Vec<Vec<[f64; 2]>>| {
+        let p = paints[poly as usize];
+        DrawItem {
+            face: faces[0],
+            merged: faces[1..].to_vec(),
+            material: scene.faces[screen.polys[poly as usize].face as usize].material,
+            rings,
+            color: p.color,
+            opacity: p.opacity,
+        }
+    };
+    let group_of = |p: &Piece| group[p.poly as usize];
+    let samples = Samples::new(screen.width, screen.height);
+    // One rounding per exact vertex, for the regions, the outline and the seams alike.
+    let vertices = shared_vertex_pixels(opaque, &samples);
+    let mut items: Vec<DrawItem> = regions_of(opaque, &vertices, screen, group_of, report)
+        .into_iter()
+        .map(|r| item(opaque[r.piece].poly, &r.faces, r.rings))
+        .collect();
+    for run in visible.layered.chunk_by(|a, b| a.poly() == b.poly()) {
+        let poly = run[0].poly();
+        let pieces: Vec<Piece> = run
+            .iter()
+            .filter_map(|f| match f {
+                Fragment::Piece(p) => Some(p.clone()),
+                Fragment::Polygon(_) => None,
+            })
+            .collect();
+        let mut rings: Vec<Vec<[f64; 2]>> = regions(&pieces, screen, |_| ())
+            .into_iter()
+            .flat_map(|r| r.rings)
+            .collect();
+        if run.iter().any(|f| matches!(f, Fragment::Polygon(_))) {
+            let p = &screen.polys[poly as usize];
+            rings.push(pixel_ring(&samples, screen.corners(p)));
+        }
+        items.push(item(poly, &[screen.polys[poly as usize].id], rings));
+    }
+    let seams = if options.seams && !opaque.is_empty() {
+        let color = |p: &Piece| paints[p.poly as usize].color;
+        Seams {
+            strokes: seam_strokes(opaque, &vertices, &group_of, &color),
+            outline: outline(opaque, &vertices),
+        }
+    } else {
+        Seams::default()
+    };
+    Drawing {
+        width: screen.width,
+        height: screen.height,
+        background: options.background,
+        items,
+        seams,
+    }
+}
+
+/// The boundaries that opaque pieces of different groups share, stroked in the darker of the
+/// two colours (8-bit, then the smaller), one [`SeamStroke`] per colour in colour order.
+fn seam_strokes(
+    pieces: &[Piece],
+    vertices: &[Vec<[f64; 2]>],
+    group: &dyn Fn(&Piece) -> u32,
+    color: &dyn Fn(&Piece) -> [f64; 3],
+) -> Vec<SeamStroke> {
+    let mut by_color: BTreeMap<[u8; 3], SeamStroke> = BTreeMap::new();
+    for e in seams::shared_edges(pieces, vertices, |i| group(&pieces[i])) {
+        let [ca, cb] = e.pieces.map(|i| color(&pieces[i]));
+        let key = |c: [f64; 3]| {
+            let u = to_u8(c);
+            (u.iter().map(|&v| v as u32).sum::<u32>(), u)
+        };
+        let c = if key(cb) < key(ca) { cb } else { ca };
+        by_color
+            .entry(to_u8(c))
+            .or_insert_with(|| SeamStroke {
+                color: c,
+                segments: Vec::new(),
+            })
+            .segments
+            .push(e.ends);
+    }
+    by_color.into_values().collect()
+}

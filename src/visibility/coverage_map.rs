@@ -1,0 +1,115 @@
+//! The coverage-map strategy (`coverage`): the exact visible set with no tree.
+//!
+//! Every screen polygon becomes convex pieces; they go, nearest corner first, into the
+//! depth-aware coverage map ([`Coverage::insert`]), which splits two overlapping pieces by the
+//! line where their planes meet and keeps the nearer side of each. The order only saves work
+//! (most pieces then meet only nearer ones); it decides nothing. On interpenetrating soups a
+//! BSP cuts each triangle by the plane of every other it straddles (100 random triangles gave
+//! 7,100 fragments, 1,000 gave 3.1 million), while the coverage map only makes the splits the
+//! visible result has (818 and 7,287 pieces); it is about twice as fast on closed meshes too.
+//!
+//! Translucent faces are left out of the map and layered over it in the exact back-to-front
+//! order of a BSP of their own pieces ([`translucent_layer`]).
+
+use super::bsp::translucent_layer;
+use super::coverage::{Coverage, CoverageStats, tie_key};
+use super::visible_set::{Stats, VisibleSet};
+use super::{Strategy, initial_pieces, translucent_polygons};
+use crate::exact::polygon::Piece;
+use crate::exact::predicates::fallback_count;
+use crate::progress::{Report, Ticker};
+use crate::project::ScreenScene;
+
+/// The coverage-map strategy. See the module docs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CoverageMap;
+
+impl Strategy for CoverageMap {
+    fn visible_set(
+        &self,
+        screen: &ScreenScene,
+        translucent: &dyn Fn(u32) -> bool,
+        report: Option<Report>,
+    ) -> VisibleSet {
+        let fallbacks = fallback_count();
+        let mut stats = Stats::new();
+        let mut put = |k: &str, v: serde_json::Value| {
+            stats.insert(k.to_string(), v);
+        };
+        put("polygons", screen.polys.len().into());
+        let layered = translucent_polygons(screen, translucent);
+        put("translucent_painter_order", layered.into());
+        let (pieces, layered) = if layered {
+            let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
+                .into_iter()
+                .partition(|p| translucent(p.poly));
+            let mut coverage = coverage_of(screen, opaque, report);
+            let (layered, bsp) = translucent_layer(screen, &mut coverage, see_through, report);
+            put("pieces", (coverage.stats.inserted + bsp.pieces).into());
+            let pieces = coverage.into_pieces();
+            put("visible_pieces", pieces.len().into());
+            put("fragments", bsp.fragments.into());
+            put("bsp_nodes", bsp.nodes.into());
+            put("bsp_depth", bsp.depth.into());
+            put("translucent_parts", layered.len().into());
+            (pieces, layered)
+        } else {
+            let (visible, cs) = visible_set_with_progress(screen, report);
+            put("pieces", cs.inserted.into());
+            put("visible_pieces", visible.pieces.len().into());
+            put("replaced", cs.replaced.into());
+            put("overlap_tests", cs.overlap_tests.into());
+            (visible.pieces, Vec::new())
+        };
+        // Visible opaque pieces and translucent parts: what is drawn, per polygon.
+        put(
+            "drawn_pieces_per_polygon",
+            ((pieces.len() + layered.len()) as f64 / screen.polys.len().max(1) as f64).into(),
+        );
+        put("exact_fallbacks", (fallback_count() - fallbacks).into());
+        VisibleSet {
+            pieces,
+            layered,
+            stats,
+        }
+    }
+}
+
+/// The exact visible set of every polygon of `screen`, all taken as opaque, with the coverage
+/// map's counters.
+pub fn visible_set(screen: &ScreenScene) -> (VisibleSet, CoverageStats) {
+    visible_set_with_progress(screen, None)
+}
+
+/// [`visible_set`], reporting stage "visible set": pieces inserted into the coverage map of
+/// all the pieces.
+pub fn visible_set_with_progress(
+    screen: &ScreenScene,
+    report: Option<Report>,
+) -> (VisibleSet, CoverageStats) {
+    let coverage = coverage_of(screen, initial_pieces(screen), report);
+    let stats = coverage.stats.clone();
+    (VisibleSet::of_pieces(coverage.into_pieces()), stats)
+}
+
+/// The coverage map of `pieces`, inserted nearest corner first, reporting stage "visible set".
+fn coverage_of<'a>(
+    screen: &'a ScreenScene,
+    mut pieces: Vec<Piece>,
+    report: Option<Report>,
+) -> Coverage<'a> {
+    let near: Vec<i32> = screen
+        .polys
+        .iter()
+        .map(|p| screen.corners(p).iter().map(|c| c.z).min().unwrap_or(0))
+        .collect();
+    pieces.sort_by_key(|p| (near[p.poly as usize], tie_key(screen, p)));
+    let mut coverage = Coverage::new(screen, &pieces);
+    let mut ticker = Ticker::new(report, "visible set", pieces.len() as u64);
+    for (i, p) in pieces.into_iter().enumerate() {
+        coverage.insert(p);
+        ticker.tick(i as u64 + 1);
+    }
+    ticker.finish();
+    coverage
+}

@@ -1,0 +1,138 @@
+//! The product of every object-space strategy: what the camera sees, exactly, before anything is
+//! rounded, merged or coloured (that is [`crate::draw`]'s job).
+//!
+//! Invariants of a [`VisibleSet`] made by an exact strategy ([`super::Strategy::exact`]):
+//! - [`VisibleSet::pieces`] are convex, have pairwise disjoint interiors, each lies in the
+//!   projection of its own screen polygon, and at every point of a piece no opaque polygon is
+//!   nearer. Coplanar overlaps go to the larger face id, then the later polygon: the z-buffer's
+//!   tie rule, so the result never depends on input order. Their union is everything the
+//!   opaque faces show.
+//! - [`VisibleSet::layered`] are drawn over the pieces, back to front: the parts of translucent
+//!   faces that no opaque face hides, in an exact depth order, so each blends over exactly what
+//!   lies behind it.
+//!
+//! An approximate strategy (the painter) keeps the shape of the result, not its guarantees: its
+//! fragments are whole polygons in its own order, possibly overlapping.
+//!
+//! Where a boundary comes from: every side of a piece is a kernel [`Line`]: a face edge
+//! ([`Line::Edge`], the vertical plane through two grid corners of a polygon or of its convex
+//! decomposition) or the projection of the meeting line of two support planes
+//! ([`Line::Cut`]). Vertices are implicit (where two lines cross), never rounded here.
+
+use crate::exact::polygon::Piece;
+use crate::exact::predicates::{Line, line_side};
+use crate::exact::{Plane, Samples};
+use crate::project::ScreenScene;
+use std::cmp::Ordering;
+
+/// A strategy's counters (pieces, splits, fallbacks, ...), keys sorted; written into the JSON
+/// output as they are, so they hold no timings.
+pub type Stats = serde_json::Map<String, serde_json::Value>;
+
+/// Something drawn over the visible pieces.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Fragment {
+    /// An exact convex part of a translucent face.
+    Piece(Piece),
+    /// A whole screen polygon (index into `ScreenScene::polys`): the painter's unit.
+    Polygon(u32),
+}
+
+impl Fragment {
+    /// The screen polygon it belongs to.
+    pub fn poly(&self) -> u32 {
+        match self {
+            Fragment::Piece(p) => p.poly,
+            Fragment::Polygon(k) => *k,
+        }
+    }
+}
+
+/// What the camera sees. See the module docs for the invariants.
+#[derive(Clone, Debug, Default)]
+pub struct VisibleSet {
+    /// The visible pieces of the opaque faces: convex, disjoint, exact.
+    pub pieces: Vec<Piece>,
+    /// Drawn over `pieces`, back to front.
+    pub layered: Vec<Fragment>,
+    /// The strategy's counters.
+    pub stats: Stats,
+}
+
+impl VisibleSet {
+    /// A visible set of opaque pieces only.
+    pub fn of_pieces(pieces: Vec<Piece>) -> Self {
+        VisibleSet {
+            pieces,
+            ..VisibleSet::default()
+        }
+    }
+
+    /// The face id of the [`Self::pieces`] at every pixel centre (row-major, row 0 at the top),
+    /// decided exactly: a sample on a boundary between pieces goes to the earlier piece.
+    pub fn face_ids(&self, screen: &ScreenScene) -> Vec<Option<u32>> {
+        let (w, h) = (screen.width as i64, screen.height as i64);
+        let s = Samples::new(screen.width, screen.height);
+        let mut ids: Vec<Option<u32>> = vec![None; (w * h) as usize];
+        for piece in &self.pieces {
+            let v = piece.vertices_f64();
+            let (mut c0, mut c1, mut r0, mut r1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+            for [x, y] in &v {
+                c0 = c0.min(s.col_of(*x));
+                c1 = c1.max(s.col_of(*x));
+                r0 = r0.min(s.row_of(*y));
+                r1 = r1.max(s.row_of(*y));
+            }
+            let i0 = ((c0 - 1.0).floor() as i64).clamp(0, w);
+            let i1 = ((c1 + 1.0).ceil() as i64).clamp(0, w);
+            let j0 = ((r0 - 1.0).floor() as i64).clamp(0, h);
+            let j1 = ((r1 + 1.0).ceil() as i64).clamp(0, h);
+            let id = screen.polys[piece.poly as usize].id;
+            for j in j0..j1 {
+                // The sample row y = y_num/H as the line H·y - y_num = 0.
+                let row = Line::Edge(Plane {
+                    a: 0,
+                    b: h,
+                    c: 0,
+                    d: -(s.y_num(j) as i128),
+                });
+                for i in i0..i1 {
+                    let k = (j * w + i) as usize;
+                    if ids[k].is_some() {
+                        continue;
+                    }
+                    let col = Line::Edge(Plane {
+                        a: w,
+                        b: 0,
+                        c: 0,
+                        d: -(s.x_num(i) as i128),
+                    });
+                    let inside = piece
+                        .lines
+                        .iter()
+                        .all(|l| line_side([&col, &row], l) != Some(Ordering::Less));
+                    if inside {
+                        ids[k] = Some(id);
+                    }
+                }
+            }
+        }
+        ids
+    }
+
+    /// The pieces' vertices in pixel coordinates (y down), rounded once: for drawing.
+    pub fn pixel_rings(&self, screen: &ScreenScene) -> Vec<(u32, Vec<[f64; 2]>)> {
+        let s = Samples::new(screen.width, screen.height);
+        self.pieces
+            .iter()
+            .map(|p| {
+                let ring = p
+                    .vertices_f64()
+                    .into_iter()
+                    .map(|[x, y]| [s.col_of(x), s.row_of(y)])
+                    .collect();
+                (p.poly, ring)
+            })
+            .collect()
+    }
+}
