@@ -67,20 +67,49 @@ pub struct ProjectStats {
     pub visible_polys: usize,
 }
 
+/// Where a side of a screen polygon comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Side {
+    /// Edge k of the face, from its corner k to corner k + 1 in `Scene::face_corners` (or the
+    /// part of it that clipping left).
+    Edge(u32),
+    /// Where clipping cut the face.
+    Clip(ClipPlane),
+}
+
+/// The planes faces are clipped by (in homogeneous clip space, before the divide).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum ClipPlane {
+    Near,
+    Far,
+    /// The guard band around the view: it lies outside the image, so these sides are never
+    /// seen.
+    Guard,
+}
+
 /// All faces of a scene on screen, for one camera.
 #[derive(Clone, Debug, Default)]
 pub struct ScreenScene {
     pub polys: Vec<ScreenPoly>,
     pub points: Vec<GridPoint>,
+    /// `sides[k]`: where the side from `points[k]` to the next corner of its polygon comes from.
+    pub sides: Vec<Side>,
     pub width: u32,
     pub height: u32,
     pub stats: ProjectStats,
 }
 
 impl ScreenScene {
+    /// The corners of `p`, in order.
     #[inline]
     pub fn corners(&self, p: &ScreenPoly) -> &[GridPoint] {
         &self.points[p.start as usize..(p.start + p.len) as usize]
+    }
+
+    /// Where the sides of `p` come from: side k runs from corner k to corner k + 1.
+    #[inline]
+    pub fn sides(&self, p: &ScreenPoly) -> &[Side] {
+        &self.sides[p.start as usize..(p.start + p.len) as usize]
     }
 }
 
@@ -151,17 +180,24 @@ fn plane_value(bit: u16, p: DVec4) -> f64 {
     }
 }
 
-/// Sutherland–Hodgman against one plane, in homogeneous coordinates.
-fn clip_polygon(input: &[DVec4], bit: u16, out: &mut Vec<DVec4>) {
+/// Sutherland–Hodgman against one plane, in homogeneous coordinates. Each point carries the
+/// side that starts at it: a kept point keeps its side, a point where an edge leaves the inside
+/// starts a side along the clip plane, a point where it comes back starts the rest of that edge.
+fn clip_polygon(input: &[(DVec4, Side)], bit: u16, out: &mut Vec<(DVec4, Side)>) {
     out.clear();
     let n = input.len();
+    let along_plane = Side::Clip(match bit {
+        NEAR => ClipPlane::Near,
+        FAR => ClipPlane::Far,
+        _ => ClipPlane::Guard,
+    });
     for k in 0..n {
-        let a = input[k];
-        let b = input[(k + 1) % n];
+        let (a, side) = input[k];
+        let b = input[(k + 1) % n].0;
         let da = plane_value(bit, a);
         let db = plane_value(bit, b);
         if da >= 0.0 {
-            out.push(a);
+            out.push((a, side));
         }
         if (da >= 0.0) != (db >= 0.0) {
             // Interpolate from the inside point so the same edge clipped from either face gives
@@ -172,7 +208,8 @@ fn clip_polygon(input: &[DVec4], bit: u16, out: &mut Vec<DVec4>) {
                 (b, a, db, da)
             };
             let t = dp / (dp - dq);
-            out.push(p + (q - p) * t);
+            let leaving = da >= 0.0;
+            out.push((p + (q - p) * t, if leaving { along_plane } else { side }));
         }
     }
 }
@@ -221,8 +258,9 @@ pub fn project(
 
     let mut polys = Vec::with_capacity(scene.faces.len());
     let mut points: Vec<GridPoint> = Vec::with_capacity(scene.corners.len());
-    let mut buf_a: Vec<DVec4> = Vec::new();
-    let mut buf_b: Vec<DVec4> = Vec::new();
+    let mut sides: Vec<Side> = Vec::with_capacity(scene.corners.len());
+    let mut buf_a: Vec<(DVec4, Side)> = Vec::new();
+    let mut buf_b: Vec<(DVec4, Side)> = Vec::new();
 
     for (fi, face) in scene.faces.iter().enumerate() {
         let corners = scene.face_corners(face);
@@ -239,39 +277,55 @@ pub fn project(
         }
         let start = points.len();
         let snap = |p: DVec4| GridPoint::snap(p.x / p.w, p.y / p.w, p.z / p.w);
-        let push = |g: GridPoint, points: &mut Vec<GridPoint>| {
-            if points.len() > start
-                && let Some(last) = points.last()
-                && last.x == g.x
-                && last.y == g.y
-            {
-                return;
-            }
-            points.push(g);
-        };
+        // A corner at the (x, y) of the one before it ends a side of no length: the side that
+        // starts there is the one that goes on.
+        let push =
+            |g: GridPoint, side: Side, points: &mut Vec<GridPoint>, sides: &mut Vec<Side>| {
+                if points.len() > start
+                    && let Some(last) = points.last()
+                    && last.x == g.x
+                    && last.y == g.y
+                {
+                    *sides.last_mut().expect("parallel to points") = side;
+                    return;
+                }
+                points.push(g);
+                sides.push(side);
+            };
         if or & CLIP == 0 {
-            for &c in corners {
-                push(snap(clip[c as usize]), &mut points);
+            for (k, &c) in corners.iter().enumerate() {
+                push(
+                    snap(clip[c as usize]),
+                    Side::Edge(k as u32),
+                    &mut points,
+                    &mut sides,
+                );
             }
         } else {
             stats.clipped += 1;
             buf_a.clear();
-            buf_a.extend(corners.iter().map(|&c| clip[c as usize]));
+            buf_a.extend(
+                corners
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &c)| (clip[c as usize], Side::Edge(k as u32))),
+            );
             for bit in [NEAR, FAR, G_LEFT, G_RIGHT, G_BOTTOM, G_TOP] {
                 if or & bit != 0 {
                     clip_polygon(&buf_a, bit, &mut buf_b);
                     std::mem::swap(&mut buf_a, &mut buf_b);
                 }
             }
-            for &p in &buf_a {
-                push(snap(p), &mut points);
+            for &(p, side) in &buf_a {
+                push(snap(p), side, &mut points, &mut sides);
             }
         }
-        // Close the ring: the last corner may repeat the first.
+        // Close the ring: the last corner may repeat the first (its side, of no length, goes).
         while points.len() > start + 1 {
             let (f, l) = (points[start], *points.last().unwrap());
             if f.x == l.x && f.y == l.y {
                 points.pop();
+                sides.pop();
             } else {
                 break;
             }
@@ -290,6 +344,7 @@ pub fn project(
         let Some(plane) = plane else {
             stats.degenerate_after_snap += 1;
             points.truncate(start);
+            sides.truncate(start);
             continue;
         };
         let inside_out = analysis.meshes[face.mesh as usize].inside_out();
@@ -298,6 +353,7 @@ pub fn project(
         if !front && !two_sided && mesh_may_cull(face.mesh as usize) {
             stats.backface_culled += 1;
             points.truncate(start);
+            sides.truncate(start);
             continue;
         }
         polys.push(ScreenPoly {
@@ -313,6 +369,7 @@ pub fn project(
     ScreenScene {
         polys,
         points,
+        sides,
         width: camera.width,
         height: camera.height,
         stats,

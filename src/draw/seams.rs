@@ -160,6 +160,7 @@ fn shared_part(
 mod tests {
     use super::*;
     use crate::draw::regions::shared_vertex_pixels;
+    use crate::exact::polygon::Boundary;
     use crate::exact::{GridPoint, Plane, Samples};
 
     fn piece(poly: u32, corners: &[[i32; 2]]) -> Piece {
@@ -173,7 +174,10 @@ mod tests {
             c: 1,
             d: 0,
         };
-        Piece::from_convex(poly, support, &gp)
+        let sides: Vec<Boundary> = (0..gp.len() as u32)
+            .map(|side| Boundary::Outline { poly, side })
+            .collect();
+        Piece::from_convex(poly, support, &gp, &sides)
     }
 
     /// The shared segments as (pieces, ends in grid units, ends sorted).

@@ -12,6 +12,11 @@
 //!
 //! Non-convex faces are cut into convex pieces first ([`convex_pieces`]): every later operation
 //! (BSP splitting, coverage) then needs only the convex split.
+//!
+//! Every line of a piece carries its [`Boundary`]: where it comes from in the scene (a side of
+//! the face's outline, a diagonal of its convex decomposition, the meeting of two faces' planes,
+//! a screen line the BSP chose). The splits set the new line's boundary from what they split by,
+//! so provenance survives every operation exactly, as the lines do.
 
 use super::predicates::{
     Line, LineApprox, crossing_f64, crossing_with_error, depth_order_at, depth_order_filtered,
@@ -19,6 +24,21 @@ use super::predicates::{
 };
 use super::{GridPoint, Plane};
 use std::cmp::Ordering;
+
+/// Where a line of a piece comes from. Polygons are indices into `ScreenScene::polys`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Boundary {
+    /// Along side `side` of polygon `poly`'s outline: from its corner `side` to the next, in the
+    /// order of `ScreenScene::corners` (`ScreenScene::sides` tells a face edge from a clip).
+    Outline { poly: u32, side: u32 },
+    /// A diagonal of the convex decomposition of polygon `poly`: inside the face, not an edge.
+    Diagonal { poly: u32 },
+    /// The projection of the line where the support planes of polygons `a` (the piece's own)
+    /// and `b` meet: an intersection of two faces, or where one passes behind the other.
+    Cut { a: u32, b: u32 },
+    /// A vertical screen line that a BSP split by to balance its tree: no feature of the scene.
+    ScreenSplit,
+}
 
 /// A convex piece of a face. See the module docs. Pieces are made only here (`from_convex` and
 /// the splits), which keep `lines`, `corners`, `segments`, `points` and `line_approx` parallel;
@@ -30,6 +50,8 @@ pub struct Piece {
     pub support: Plane,
     /// Boundary lines, counter-clockwise; vertex k is where `lines[k-1]` and `lines[k]` cross.
     pub lines: Vec<Line>,
+    /// Where each line comes from (`boundaries[k]` for `lines[k]`).
+    pub boundaries: Vec<Boundary>,
     /// The grid (x, y) of vertex k when it is a grid point (an input corner, or two face edges
     /// crossing exactly at a mesh vertex): exact fast paths use it.
     pub corners: Vec<Option<[i32; 2]>>,
@@ -62,19 +84,29 @@ pub enum Split {
 }
 
 impl Piece {
-    /// The piece of a convex grid polygon (counter-clockwise, y up) in `support`. Straight
-    /// corners (a corner on the line through its neighbours, as T-junction vertices are) are
-    /// dropped: two adjacent lines of a piece must cross.
-    pub fn from_convex(poly: u32, support: Plane, corners: &[GridPoint]) -> Piece {
+    /// The piece of a convex grid polygon (counter-clockwise, y up) in `support`; `sides[k]` is
+    /// where its side from corner k to corner k + 1 comes from. Straight corners (a corner on the
+    /// line through its neighbours, as T-junction vertices are) are dropped: two adjacent lines
+    /// of a piece must cross. The merged line keeps the boundary of its first side.
+    pub fn from_convex(
+        poly: u32,
+        support: Plane,
+        corners: &[GridPoint],
+        sides: &[Boundary],
+    ) -> Piece {
         use super::predicates::orient2d;
         let m = corners.len();
-        let corners: Vec<GridPoint> = (0..m)
+        assert_eq!(sides.len(), m, "one boundary per side");
+        let kept: Vec<usize> = (0..m)
             .filter(|&k| {
                 orient2d(corners[(k + m - 1) % m], corners[k], corners[(k + 1) % m])
                     != Ordering::Equal
             })
-            .map(|k| corners[k])
             .collect();
+        // A dropped corner joins the side before it to the side after: the line keeps the
+        // boundary of the side that starts at the kept corner before it.
+        let boundaries: Vec<Boundary> = kept.iter().map(|&k| sides[k]).collect();
+        let corners: Vec<GridPoint> = kept.iter().map(|&k| corners[k]).collect();
         let corners = &corners[..];
         let n = corners.len();
         let lines: Vec<Line> = (0..n)
@@ -107,6 +139,7 @@ impl Piece {
             poly,
             support,
             lines,
+            boundaries,
             corners,
             segments,
             frame,
@@ -307,8 +340,9 @@ impl Piece {
         (neg, pos)
     }
 
-    /// Splits by a support plane `q` (`q.c > 0`). The negative part is the one nearer the viewer.
-    pub fn split_by_plane(&self, q: &Plane) -> Split {
+    /// Splits by a support plane `q` (`q.c > 0`), the plane of polygon `by`. The negative part is
+    /// the one nearer the viewer; the new line's boundary is `Cut { a: self.poly, b: by }`.
+    pub fn split_by_plane(&self, q: &Plane, by: u32) -> Split {
         if same_plane(&self.support, q) {
             return Split::On;
         }
@@ -322,25 +356,36 @@ impl Piece {
             &signs,
             Line::Cut(self.support, *q),
             Line::Cut(*q, self.support),
+            Boundary::Cut {
+                a: self.poly,
+                b: by,
+            },
         )
     }
 
-    /// Splits by a screen line: the negative part is where `l` is negative.
-    pub fn split_by_line(&self, l: &Line) -> Split {
-        self.split_by_line_with(l, &l.approx())
+    /// Splits by a screen line whose boundary is `origin`: the negative part is where `l` is
+    /// negative.
+    pub fn split_by_line(&self, l: &Line, origin: Boundary) -> Split {
+        self.split_by_line_with(l, &l.approx(), origin)
     }
 
     /// [`Self::split_by_line`] with `l.approx()` given (a piece keeps its lines').
-    pub fn split_by_line_with(&self, l: &Line, la: &LineApprox) -> Split {
+    pub fn split_by_line_with(&self, l: &Line, la: &LineApprox, origin: Boundary) -> Split {
         let signs: Vec<Ordering> = (0..self.len())
             .map(|k| self.vertex_line_sign_with(k, l, la))
             .collect();
-        self.split_with(&signs, negate(l), *l)
+        self.split_with(&signs, negate(l), *l, origin)
     }
 
     /// Splits given the vertex signs; `neg_line` bounds the negative part (positive inside it),
-    /// `pos_line` the positive part.
-    fn split_with(&self, signs: &[Ordering], neg_line: Line, pos_line: Line) -> Split {
+    /// `pos_line` the positive part; both come from `origin`.
+    fn split_with(
+        &self,
+        signs: &[Ordering],
+        neg_line: Line,
+        pos_line: Line,
+        origin: Boundary,
+    ) -> Split {
         let has_neg = signs.contains(&Ordering::Less);
         let has_pos = signs.contains(&Ordering::Greater);
         match (has_neg, has_pos) {
@@ -350,14 +395,14 @@ impl Piece {
             (true, true) => {}
         }
         Split::Both(
-            self.part(signs, Ordering::Less, neg_line),
-            self.part(signs, Ordering::Greater, pos_line),
+            self.part(signs, Ordering::Less, neg_line, origin),
+            self.part(signs, Ordering::Greater, pos_line, origin),
         )
     }
 
     /// The part on side `side`: the edges with some point strictly on that side, in order, closed
     /// by `closing`. Edge k runs from vertex k to vertex k+1 along line k.
-    fn part(&self, signs: &[Ordering], side: Ordering, closing: Line) -> Piece {
+    fn part(&self, signs: &[Ordering], side: Ordering, closing: Line, origin: Boundary) -> Piece {
         let n = self.len();
         // The boundary of the part enters `side` along the edge that runs from a vertex not on
         // `side` to one on it (unique: the piece is convex and straddles), follows the edges
@@ -385,6 +430,8 @@ impl Piece {
         let last = (run[run.len() - 1] + 1) % n;
         let mut lines: Vec<Line> = run.iter().map(|&k| self.lines[k]).collect();
         lines.push(closing);
+        let mut boundaries: Vec<Boundary> = run.iter().map(|&k| self.boundaries[k]).collect();
+        boundaries.push(origin);
         let mut line_approx: Vec<LineApprox> = run.iter().map(|&k| self.line_approx[k]).collect();
         line_approx.push(closing.approx());
         let mut segments: Vec<Option<[[i32; 2]; 2]>> =
@@ -413,6 +460,7 @@ impl Piece {
             poly: self.poly,
             support: self.support,
             lines,
+            boundaries,
             corners,
             segments,
             frame: self.frame,
@@ -538,6 +586,15 @@ pub fn same_plane(s: &Plane, q: &Plane) -> bool {
 /// back across diagonals while the union stays convex (Hertel–Mehlhorn). A convex polygon comes
 /// back whole.
 pub fn convex_pieces(points: &[GridPoint]) -> Vec<Vec<GridPoint>> {
+    convex_piece_indices(points)
+        .into_iter()
+        .map(|p| p.into_iter().map(|v| points[v]).collect())
+        .collect()
+}
+
+/// [`convex_pieces`] as indices into `points`: a side from index i to (i + 1) mod n is a side of
+/// the polygon, any other a diagonal.
+pub fn convex_piece_indices(points: &[GridPoint]) -> Vec<Vec<usize>> {
     use super::predicates::orient2d;
     let n = points.len();
     let convex = |ring: &[GridPoint]| {
@@ -545,7 +602,7 @@ pub fn convex_pieces(points: &[GridPoint]) -> Vec<Vec<GridPoint>> {
         (0..m).all(|k| orient2d(ring[k], ring[(k + 1) % m], ring[(k + 2) % m]) != Ordering::Less)
     };
     if convex(points) {
-        return vec![points.to_vec()];
+        return vec![(0..n).collect()];
     }
     // Ear clipping on indices.
     let mut idx: Vec<usize> = (0..n).collect();
@@ -609,9 +666,6 @@ pub fn convex_pieces(points: &[GridPoint]) -> Vec<Vec<GridPoint>> {
         }
     }
     pieces
-        .into_iter()
-        .map(|p| p.into_iter().map(|v| points[v]).collect())
-        .collect()
 }
 
 /// The union ring of two index rings sharing exactly one edge (a→b in one, b→a in the other).
@@ -667,14 +721,17 @@ mod tests {
     fn square() -> Piece {
         let c = [gp(0, 0, 0), gp(100, 0, 0), gp(100, 100, 0), gp(0, 100, 0)];
         let support = Plane::through(c[0], c[1], c[2]).unwrap();
-        Piece::from_convex(0, support, &c)
+        let sides: Vec<Boundary> = (0..4)
+            .map(|side| Boundary::Outline { poly: 0, side })
+            .collect();
+        Piece::from_convex(0, support, &c, &sides)
     }
 
     #[test]
     fn split_square_by_line_through_the_middle() {
         let sq = square();
         let l = Line::Edge(Plane::edge(gp(50, -10, 0), gp(50, 200, 0)).unwrap());
-        let Split::Both(neg, pos) = sq.split_by_line(&l) else {
+        let Split::Both(neg, pos) = sq.split_by_line(&l, Boundary::ScreenSplit) else {
             panic!()
         };
         assert_valid(&neg);
@@ -689,7 +746,7 @@ mod tests {
     fn split_through_vertices_keeps_them_exact() {
         let sq = square();
         let l = Line::Edge(Plane::edge(gp(0, 0, 0), gp(100, 100, 0)).unwrap());
-        let Split::Both(neg, pos) = sq.split_by_line(&l) else {
+        let Split::Both(neg, pos) = sq.split_by_line(&l, Boundary::ScreenSplit) else {
             panic!()
         };
         assert_eq!((neg.len(), pos.len()), (3, 3));
@@ -699,7 +756,7 @@ mod tests {
         // A line touching at a corner only does not split.
         // Its left (positive) side is x + y > 200: the square is on the negative side.
         let t = Line::Edge(Plane::edge(gp(100, 100, 0), gp(200, 0, 0)).unwrap());
-        assert_eq!(sq.split_by_line(&t), Split::Negative);
+        assert_eq!(sq.split_by_line(&t, Boundary::ScreenSplit), Split::Negative);
     }
 
     #[test]
@@ -709,7 +766,7 @@ mod tests {
         let sq = square();
         let q = Plane::through(gp(50, 0, 0), gp(50, 100, 0), gp(0, 0, -50)).unwrap();
         assert!(q.c > 0);
-        let Split::Both(near, far) = sq.split_by_plane(&q) else {
+        let Split::Both(near, far) = sq.split_by_plane(&q, 7) else {
             panic!()
         };
         assert_valid(&near);
@@ -720,7 +777,34 @@ mod tests {
             near.vertices_f64()
         );
         assert!(far.vertices_f64().iter().all(|v| v[0] <= 50.0));
-        assert_eq!(sq.split_by_plane(&sq.support), Split::On);
+        assert_eq!(sq.split_by_plane(&sq.support, 0), Split::On);
+    }
+
+    /// Each part keeps the boundaries of the sides it keeps, in order, and closes with the
+    /// splitter's: a cut by polygon 7's plane, then a screen split.
+    #[test]
+    fn splits_keep_each_line_with_its_boundary() {
+        let sq = square();
+        let q = Plane::through(gp(50, 0, 0), gp(50, 100, 0), gp(0, 0, -50)).unwrap();
+        let Split::Both(near, far) = sq.split_by_plane(&q, 7) else {
+            panic!()
+        };
+        let cut = Boundary::Cut { a: 0, b: 7 };
+        let side = |side| Boundary::Outline { poly: 0, side };
+        // The square's sides run bottom (0), right (1), top (2), left (3); x > 50 is nearer.
+        assert_eq!(near.boundaries, vec![side(0), side(1), side(2), cut]);
+        assert_eq!(far.boundaries, vec![side(2), side(3), side(0), cut]);
+        let l = Line::Edge(Plane::edge(gp(0, 50, 0), gp(200, 50, 0)).unwrap());
+        let Split::Both(below, above) = far.split_by_line(&l, Boundary::ScreenSplit) else {
+            panic!()
+        };
+        assert_eq!(below.lines.len(), below.boundaries.len());
+        assert!(below.boundaries.contains(&Boundary::ScreenSplit));
+        assert!(above.boundaries.contains(&Boundary::ScreenSplit));
+        assert!(below.boundaries.contains(&cut) && above.boundaries.contains(&cut));
+        for p in [&near, &far, &below, &above] {
+            assert_eq!(p.lines.len(), p.boundaries.len());
+        }
     }
 
     #[test]
@@ -743,7 +827,7 @@ mod tests {
                 let l = Line::Edge(e);
                 let mut next = Vec::new();
                 for p in &pieces {
-                    match p.split_by_line(&l) {
+                    match p.split_by_line(&l, Boundary::ScreenSplit) {
                         Split::Both(n, q) => {
                             assert_valid(&n);
                             assert_valid(&q);

@@ -19,7 +19,7 @@ use super::coverage::{Coverage, bounds, tie_key};
 use super::initial_pieces;
 use super::visible_set::{Fragment, VisibleSet};
 use crate::exact::Plane;
-use crate::exact::polygon::{Piece, Split, separated};
+use crate::exact::polygon::{Boundary, Piece, Split, separated};
 use crate::exact::predicates::Line;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
@@ -59,8 +59,8 @@ pub struct Bsp {
 /// What a node splits by.
 #[derive(Clone, Copy, Debug)]
 enum Splitter {
-    /// A piece's support plane: the viewer is on its negative side.
-    Support(Plane),
+    /// A support plane and the polygon it is the plane of: the viewer is on its negative side.
+    Support(Plane, u32),
     /// A vertical plane (a screen line): its two sides do not overlap on screen, so their order
     /// does not matter. These keep the tree balanced where support planes would not (the faces
     /// of a convex mesh never separate one another).
@@ -70,15 +70,15 @@ enum Splitter {
 impl Splitter {
     fn split(&self, p: &Piece) -> Split {
         match self {
-            Splitter::Support(q) => p.split_by_plane(q),
-            Splitter::Screen(l) => p.split_by_line(l),
+            Splitter::Support(q, by) => p.split_by_plane(q, *by),
+            Splitter::Screen(l) => p.split_by_line(l, Boundary::ScreenSplit),
         }
     }
 
     /// (reaches the negative side, reaches the positive side), without splitting.
     fn sides(&self, p: &Piece) -> (bool, bool) {
         match self {
-            Splitter::Support(q) => p.sides_of_plane(q),
+            Splitter::Support(q, _) => p.sides_of_plane(q),
             Splitter::Screen(l) => p.sides_of_line(l),
         }
     }
@@ -119,7 +119,7 @@ fn candidates<'a>(pieces: &'a [Piece], boxes: &[[f64; 4]]) -> (Vec<Splitter>, Ve
     let cstep = pieces.len().div_ceil(CANDIDATES).max(1);
     let mut out: Vec<Splitter> = (0..pieces.len())
         .step_by(cstep)
-        .map(|i| Splitter::Support(pieces[i].support))
+        .map(|i| Splitter::Support(pieces[i].support, pieces[i].poly))
         .collect();
     if pieces.len() > 2 {
         let centres: Vec<[f64; 2]> = boxes
@@ -238,8 +238,8 @@ impl Bsp {
                     // which always removes at least its own piece.
                     let mut all = neg;
                     all.extend(pos);
-                    let first = all[0].support;
-                    partition(&Splitter::Support(first), all)
+                    let first = Splitter::Support(all[0].support, all[0].poly);
+                    partition(&first, all)
                 } else {
                     (neg, on, pos)
                 }

@@ -133,7 +133,7 @@ impl<'a> Coverage<'a> {
                 return;
             }
             // The viewer is on the negative side of `front`'s support plane.
-            match part.split_by_plane(&front.support) {
+            match part.split_by_plane(&front.support, front.poly) {
                 Split::Negative => out.push(part),
                 Split::Positive => subtract(part, front, out),
                 Split::On if tie_key(screen, &part) < tie_key(screen, front) => out.push(part),
@@ -238,7 +238,7 @@ impl<'a> Coverage<'a> {
     fn resolve(&self, part: Piece, front: &Piece, kept: &mut Vec<Piece>) -> Option<Vec<Piece>> {
         // The viewer is on the negative side of every support plane: the negative side of
         // `front`'s plane is nearer than `front`.
-        match part.split_by_plane(&front.support) {
+        match part.split_by_plane(&front.support, front.poly) {
             Split::Positive => {
                 subtract(part, front, kept);
                 None
@@ -264,7 +264,7 @@ impl<'a> Coverage<'a> {
                 // Where the part is nearer, `front` is farther, and the other way round: the
                 // two splits are by the same screen line, the projection of the planes' meet.
                 let mut front_keeps = Vec::new();
-                let front_nearer = match front.split_by_plane(&part.support) {
+                let front_nearer = match front.split_by_plane(&part.support, part.poly) {
                     Split::Negative | Split::On => {
                         // `front` is nearer wherever it is, so the part's nearer side misses it.
                         subtract(part_farther, front, kept);
@@ -303,8 +303,9 @@ pub(crate) fn subtract(piece: Piece, front: &Piece, out: &mut Vec<Piece>) {
         return;
     }
     let mut inside = piece;
-    for (line, approx) in front.lines.iter().zip(&front.line_approx) {
-        match inside.split_by_line_with(line, approx) {
+    let lines = front.lines.iter().zip(&front.line_approx);
+    for ((line, approx), origin) in lines.zip(&front.boundaries) {
+        match inside.split_by_line_with(line, approx, *origin) {
             // Entirely outside this line of `front`: nothing of it is hidden.
             Split::Negative => {
                 out.push(inside);

@@ -28,7 +28,7 @@ pub use coverage_map::CoverageMap;
 pub use painter::Painter;
 pub use visible_set::{Fragment, Stats, VisibleSet};
 
-use crate::exact::polygon::{Piece, convex_pieces};
+use crate::exact::polygon::{Boundary, Piece, convex_piece_indices};
 use crate::exact::{GridPoint, Samples};
 use crate::progress::Report;
 use crate::project::ScreenScene;
@@ -53,19 +53,40 @@ fn translucent_polygons(screen: &ScreenScene, translucent: &dyn Fn(u32) -> bool)
 }
 
 /// The convex pieces of every screen polygon, counter-clockwise (y up); non-convex polygons are
-/// decomposed exactly.
+/// decomposed exactly. Each line's boundary is the polygon's outline side it runs along, or a
+/// diagonal of the decomposition.
 pub fn initial_pieces(screen: &ScreenScene) -> Vec<Piece> {
     let mut out = Vec::with_capacity(screen.polys.len());
     for (i, p) in screen.polys.iter().enumerate() {
+        let poly = i as u32;
         let pts = screen.corners(p);
-        // Back faces seen from behind run clockwise on screen.
-        let ccw: Vec<GridPoint> = if crate::exact::twice_signed_area(pts) > 0 {
-            pts.to_vec()
-        } else {
+        let n = pts.len();
+        // Back faces seen from behind run clockwise on screen: walk them backwards, the k-th
+        // side of the walk running along outline side n - 2 - k (mod n) the other way.
+        let reversed = crate::exact::twice_signed_area(pts) <= 0;
+        let ccw: Vec<GridPoint> = if reversed {
             pts.iter().rev().copied().collect()
+        } else {
+            pts.to_vec()
         };
-        for convex in convex_pieces(&ccw) {
-            out.push(Piece::from_convex(i as u32, p.plane, &convex));
+        let outline_side = |k: usize| if reversed { (2 * n - 2 - k) % n } else { k } as u32;
+        for piece in convex_piece_indices(&ccw) {
+            let m = piece.len();
+            let corners: Vec<GridPoint> = piece.iter().map(|&v| ccw[v]).collect();
+            let sides: Vec<Boundary> = (0..m)
+                .map(|k| {
+                    let (a, b) = (piece[k], piece[(k + 1) % m]);
+                    if b == (a + 1) % n {
+                        Boundary::Outline {
+                            poly,
+                            side: outline_side(a),
+                        }
+                    } else {
+                        Boundary::Diagonal { poly }
+                    }
+                })
+                .collect();
+            out.push(Piece::from_convex(poly, p.plane, &corners, &sides));
         }
     }
     out

@@ -14,10 +14,16 @@
 //! An approximate strategy (the painter) keeps the shape of the result, not its guarantees: its
 //! fragments are whole polygons in its own order, possibly overlapping.
 //!
-//! Where a boundary comes from: every side of a piece is a kernel [`Line`]: a face edge
-//! ([`Line::Edge`], the vertical plane through two grid corners of a polygon or of its convex
-//! decomposition) or the projection of the meeting line of two support planes
-//! ([`Line::Cut`]). Vertices are implicit (where two lines cross), never rounded here.
+//! Where a boundary comes from: every side of a piece is a kernel [`Line`] (never rounded here;
+//! vertices are implicit, where two lines cross) with its [`Boundary`]: a side of a screen
+//! polygon's outline (`ScreenScene::sides` then tells a face edge, and which, from a clip by the
+//! near or far plane), a diagonal of a non-convex face's decomposition (inside the face), the
+//! meeting of two polygons' support planes (an intersection line, or where one face passes
+//! behind another: the cut is stored as the two polygons, whose planes are the table), or a
+//! screen line the BSP chose (no feature of the scene). Hidden-line drawings read them:
+//! a visible edge is an outline side that is a face edge, seen.
+//!
+//! [`Boundary`]: crate::exact::polygon::Boundary
 
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::{Line, line_side};
