@@ -74,7 +74,7 @@ fn check_piece(screen: &ScreenScene, piece: &Piece, seen: &mut [usize; 4]) {
 fn check_scene(scene: &Scene, camera: &Camera) -> [usize; 4] {
     let screen = prepare(scene, camera, CullMode::Auto).screen;
     let mut seen = [0; 4];
-    let translucent = |k: u32| k % 5 == 0;
+    let translucent = |k: u32| k.is_multiple_of(5);
     for strategy in [&CoverageMap as &dyn Strategy, &BspTree] {
         for layered in [false, true] {
             let opaque = |_: u32| false;

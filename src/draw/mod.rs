@@ -153,7 +153,7 @@ pub fn draw(
         let pieces: Vec<Piece> = run
             .iter()
             .filter_map(|f| match f {
-                Fragment::Piece(p) => Some(p.clone()),
+                Fragment::Piece(p) => Some((**p).clone()),
                 Fragment::Polygon(_) => None,
             })
             .collect();

@@ -346,5 +346,9 @@ pub fn translucent_layer(
     for f in bsp.back_to_front() {
         opaque.unhidden_parts(f, &mut parts);
     }
-    (parts.into_iter().map(Fragment::Piece).collect(), bsp.stats)
+    let layer = parts
+        .into_iter()
+        .map(|p| Fragment::Piece(Box::new(p)))
+        .collect();
+    (layer, bsp.stats)
 }

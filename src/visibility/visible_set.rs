@@ -38,8 +38,9 @@ pub type Stats = serde_json::Map<String, serde_json::Value>;
 /// Something drawn over the visible pieces.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Fragment {
-    /// An exact convex part of a translucent face.
-    Piece(Piece),
+    /// An exact convex part of a translucent face (boxed: a painter's list of polygons stays
+    /// small).
+    Piece(Box<Piece>),
     /// A whole screen polygon (index into `ScreenScene::polys`): the painter's unit.
     Polygon(u32),
 }
