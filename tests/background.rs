@@ -3,18 +3,11 @@
 //! `--background R,G,B|none`. The seed's transparent scene then shows the course material's
 //! colours: green with transparency 0.4 over black (0, 153, 0), over the blue (0, 153, 102).
 
-#[path = "support/seam_measure.rs"]
-mod seam_measure;
+mod support;
 
 use std::collections::HashMap;
-use std::process::{Command, Output};
-
-fn sightline(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sightline"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use support::cli::{run_err, run_ok};
+use support::seam_measure;
 
 /// Renders to a file in a temporary directory and returns its bytes.
 fn render(input: &str, name: &str, extra: &[&str]) -> Vec<u8> {
@@ -29,8 +22,7 @@ fn render(input: &str, name: &str, extra: &[&str]) -> Vec<u8> {
         out.to_str().unwrap(),
     ];
     args.extend_from_slice(extra);
-    let o = sightline(&args);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    run_ok(&args);
     std::fs::read(out).unwrap()
 }
 
@@ -113,7 +105,7 @@ fn background_none_gives_an_svg_without_a_background() {
     // PNG has no transparency here: refused, not ignored.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("c.png");
-    let o = sightline(&[
+    let (code, err) = run_err(&[
         "render",
         "fixtures/cube.obj",
         "--background",
@@ -121,10 +113,9 @@ fn background_none_gives_an_svg_without_a_background() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert!(!o.status.success());
+    assert_ne!(code, Some(0));
     assert!(
-        String::from_utf8_lossy(&o.stderr).contains("--background none applies to SVG output"),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
+        err.contains("--background none applies to SVG output"),
+        "{err}"
     );
 }

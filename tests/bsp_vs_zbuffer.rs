@@ -8,7 +8,9 @@ use sightline::pipeline::render_zbuffer;
 use sightline::project::CullMode;
 use sightline::scene::{Scene, SceneBuilder};
 use sightline::visibility::bsp::{Bsp, visible_set};
-use support::*;
+use support::camera::random_camera;
+use support::oracle::interior_mismatches;
+use support::scenes::{add_box, add_sphere, random_triangles};
 
 /// Interior mismatches between the exact ids and the z-buffer's, for both exact paths (the
 /// coverage map `--method bsp` draws, and the BSP walk). Returns the interior pixel count and

@@ -7,7 +7,7 @@
 //! `SIGHTLINE_FUZZ_CASES` cases (default 1,000,000) per format, a tenth of that for MTL:
 //! `SIGHTLINE_FUZZ_CASES=200000 cargo test --release --test fuzz_mesh_formats -- --ignored`.
 
-mod common;
+mod support;
 
 use proptest::prelude::*;
 use proptest::sample::{Index, select};
@@ -15,6 +15,7 @@ use proptest::test_runner::{Config, TestRunner};
 use sightline::scene::{Format, load_bytes};
 use std::cell::Cell;
 use std::time::Instant;
+use support::fixtures::fixtures_dir;
 
 const DEFAULT_CASES: u32 = 100_000;
 
@@ -28,10 +29,10 @@ fn seeds(format: Format) -> Vec<Vec<u8>> {
     let mut out = Vec::new();
     // The good fixtures three times: mutants of them get further than mutants of broken files.
     for dir in [
-        common::fixtures(),
-        common::fixtures(),
-        common::fixtures(),
-        common::fixtures().join("bad"),
+        fixtures_dir(),
+        fixtures_dir(),
+        fixtures_dir(),
+        fixtures_dir().join("bad"),
     ] {
         let mut paths: Vec<_> = std::fs::read_dir(&dir)
             .unwrap()
@@ -111,7 +112,10 @@ fn grid_seeds(format: Format) -> Vec<Vec<u8>> {
                 s += "endloop\nendfacet\n";
             }
             s += "endsolid grid\n";
-            vec![s.into_bytes(), common::binary_stl("grid", &tris)]
+            vec![
+                s.into_bytes(),
+                support::generated::binary_stl("grid", &tris),
+            ]
         }
         Format::Ply => {
             let head = |fmt: &str| {
@@ -595,7 +599,7 @@ fn fuzz_mtl(cases: u32) {
         "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n",
     )
     .unwrap();
-    let seed = std::fs::read(common::fixtures().join("cube.mtl")).unwrap();
+    let seed = std::fs::read(fixtures_dir().join("cube.mtl")).unwrap();
     let dict: Vec<&'static [u8]> = vec![
         b"newmtl",
         b"red",

@@ -4,7 +4,7 @@
 mod support;
 
 use glam::DVec3;
-use sightline::camera::{Camera, CameraSpec, Projection};
+use sightline::camera::{Camera, Projection};
 use sightline::output::drawing::{DrawItem, Drawing};
 use sightline::output::json::write_json;
 use sightline::output::raster_drawing::{colors, face_ids};
@@ -13,9 +13,13 @@ use sightline::pipeline::{Fill, prepare, render_zbuffer};
 use sightline::project::CullMode;
 use sightline::scene::primitives::sphere_scene;
 use sightline::scene::{Material, Scene, SceneBuilder};
-use sightline::visibility::{Painter, VisibilityMethod, methods};
-use std::path::Path;
-use support::{add_triangle, interior_mismatches, pixel_of};
+use support::camera::{front_ortho, look_at, scene_camera, spec_camera};
+use support::fixtures::fixture;
+use support::oracle::{interior_mismatches, pixel_of};
+use support::scenes::{add_triangle, random_triangles};
+use support::strategy::{
+    BspMethod, Painter, VisibilityMethod, exact_drawing, method_by_name, methods, painter_drawing,
+};
 
 fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<[f64; 2]> {
     vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
@@ -144,11 +148,11 @@ fn svg_options_and_no_background() {
 
 #[test]
 fn svg_and_json_are_deterministic() {
-    let scene = sightline::load(Path::new("fixtures/primitives.x3d"), None).unwrap();
+    let scene = fixture("primitives.x3d");
     let cam = spec_camera(&scene, (320, 240));
     let run = || {
         let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-        let mut r = Painter.run(&scene, &screen, &cam, Fill::Shade);
+        let mut r = painter_drawing(&scene, &screen, &cam, Fill::Shade);
         r.stats.remove("sort_seconds"); // a timing, not part of the picture
         (
             write_svg(&r.drawing, &SvgOptions::default()),
@@ -268,10 +272,10 @@ fn region_numbers(text: &str) -> Vec<Vec<f64>> {
 
 #[test]
 fn json_coordinates_round_trip_exactly() {
-    let scene = sightline::load(Path::new("fixtures/primitives.x3d"), None).unwrap();
+    let scene = fixture("primitives.x3d");
     let cam = spec_camera(&scene, (333, 217));
     let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-    let r = Painter.run(&scene, &screen, &cam, Fill::Shade);
+    let r = painter_drawing(&scene, &screen, &cam, Fill::Shade);
     let text = write_json(&r.drawing, &scene, &r.stats);
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let numbers = region_numbers(&text);
@@ -328,15 +332,6 @@ fn raster_square_with_hole_and_later_items_on_top() {
     assert_eq!(face_ids(&r)[6 * 12 + 2], Some(3));
 }
 
-fn spec_camera(scene: &Scene, size: (u32, u32)) -> Camera {
-    CameraSpec {
-        size: Some(size),
-        ..CameraSpec::default()
-    }
-    .resolve(scene.bounds().unwrap(), scene.viewpoint.as_ref())
-    .unwrap()
-}
-
 #[test]
 fn seed_transparent_scene_blends_exactly() {
     check_seed_transparent(&Painter);
@@ -344,14 +339,12 @@ fn seed_transparent_scene_blends_exactly() {
 
 #[test]
 fn seed_transparent_scene_blends_exactly_with_bsp() {
-    check_seed_transparent(&sightline::visibility::BspMethod::default());
+    check_seed_transparent(&BspMethod::default());
 }
 
-fn check_seed_transparent(method: &dyn sightline::visibility::VisibilityMethod) {
-    let scene = sightline::load(Path::new("fixtures/seed_transparent.x3d"), None).unwrap();
-    let cam = CameraSpec::default()
-        .resolve(scene.bounds().unwrap(), scene.viewpoint.as_ref())
-        .unwrap();
+fn check_seed_transparent(method: &dyn VisibilityMethod) {
+    let scene = fixture("seed_transparent.x3d");
+    let cam = scene_camera(&scene);
     let screen = prepare(&scene, &cam, CullMode::Auto).screen;
     let mut r = method.run(&scene, &screen, &cam, Fill::Shade);
     r.drawing.background = Some([0.0; 3]);
@@ -393,7 +386,7 @@ fn check_seed_transparent(method: &dyn sightline::visibility::VisibilityMethod) 
 fn painter_mismatches(scene: &Scene, cam: &Camera) -> (usize, usize) {
     let (prepared, zb) = render_zbuffer(scene, cam, CullMode::Auto, |_| {});
     let reference = zb.face_ids(&prepared.screen);
-    let r = Painter.run(scene, &prepared.screen, cam, Fill::Id);
+    let r = painter_drawing(scene, &prepared.screen, cam, Fill::Id);
     assert_eq!(r.drawing.items.len(), prepared.screen.polys.len());
     assert_eq!(r.stats["faces_drawn"], prepared.screen.polys.len());
     let ids = face_ids(&r.drawing);
@@ -404,11 +397,8 @@ fn painter_mismatches(scene: &Scene, cam: &Camera) -> (usize, usize) {
 
 #[test]
 fn painter_matches_the_zbuffer_on_the_seed_scene() {
-    let scene = sightline::load(Path::new("fixtures/seed_two_triangles.x3d"), None).unwrap();
-    let cam = CameraSpec::default()
-        .resolve(scene.bounds().unwrap(), scene.viewpoint.as_ref())
-        .unwrap();
-    let (bad, interior) = painter_mismatches(&scene, &cam);
+    let scene = fixture("seed_two_triangles.x3d");
+    let (bad, interior) = painter_mismatches(&scene, &scene_camera(&scene));
     assert_eq!(bad, 0);
     assert!(interior > 500_000);
 }
@@ -418,11 +408,11 @@ fn painter_misorders_a_long_face_on_the_primitives() {
     // No cyclic overlap here, yet the farthest-corner sort is wrong: the box is 4 units deep, so
     // its side facing the sphere has its farthest corner behind every sphere face and is drawn
     // first, though it covers some of them. Every mismatch is that face hidden by the sphere.
-    let scene = sightline::load(Path::new("fixtures/primitives.x3d"), None).unwrap();
+    let scene = fixture("primitives.x3d");
     let cam = spec_camera(&scene, (640, 480));
     let (prepared, zb) = render_zbuffer(&scene, &cam, CullMode::Auto, |_| {});
     let reference = zb.face_ids(&prepared.screen);
-    let r = Painter.run(&scene, &prepared.screen, &cam, Fill::Id);
+    let r = painter_drawing(&scene, &prepared.screen, &cam, Fill::Id);
     let ids = face_ids(&r.drawing);
     let mesh_of = |id: u32| {
         let f = scene.faces.iter().find(|f| f.id == id).unwrap();
@@ -470,18 +460,14 @@ fn painter_matches_the_zbuffer_on_a_100k_triangle_sphere_at_1024() {
 }
 
 fn ortho_top_camera(size: u32, height: f64) -> Camera {
-    let c = Camera {
-        eye: DVec3::new(0.0, 0.0, 10.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: Projection::Orthographic { height },
-        near: 1.0,
-        far: 20.0,
-        width: size,
-        height: size,
-    };
-    c.validate().unwrap();
-    c
+    look_at(
+        DVec3::new(0.0, 0.0, 10.0),
+        DVec3::ZERO,
+        Projection::Orthographic { height },
+        1.0,
+        20.0,
+        (size, size),
+    )
 }
 
 #[test]
@@ -537,8 +523,8 @@ fn painter_fails_on_interpenetrating_triangles() {
 fn the_method_list_has_the_painter_marked_approximate() {
     let ms = methods();
     assert!(ms.iter().any(|m| m.name() == "painter" && !m.exact()));
-    assert!(sightline::visibility::method_by_name("painter").is_some());
-    assert!(sightline::visibility::method_by_name("nope").is_none());
+    assert!(method_by_name("painter").is_some());
+    assert!(method_by_name("nope").is_none());
 }
 
 /// A flat face stored as a fan of triangles (as CAD exports do), next to a tilted triangle of the
@@ -547,7 +533,6 @@ fn the_method_list_has_the_painter_marked_approximate() {
 /// entry per face; the face ids at pixel centres are the same either way.
 #[test]
 fn coplanar_faces_of_one_paint_are_drawn_as_one_region() {
-    use sightline::visibility::BspMethod;
     let mut b = SceneBuilder::new("fan");
     b.begin_mesh("fan");
     let m = b.default_material();
@@ -574,23 +559,14 @@ fn coplanar_faces_of_one_paint_are_drawn_as_one_region() {
         .map(|(x, y, z)| b.add_vertex(DVec3::new(x, y, z)));
     b.add_face(&t, m);
     let scene = b.finish().unwrap();
-    let cam = Camera {
-        eye: DVec3::new(0.0, 0.0, 5.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: Projection::Orthographic { height: 3.0 },
-        near: 1.0,
-        far: 10.0,
-        width: 160,
-        height: 100,
-    };
+    let cam = front_ortho(3.0, 160, 100);
     let screen = prepare(&scene, &cam, CullMode::Off).screen;
     let merged = BspMethod {
         merge_surfaces: true,
         seams: false,
     }
     .run(&scene, &screen, &cam, Fill::Shade);
-    let apart = BspMethod::default().run(&scene, &screen, &cam, Fill::Shade);
+    let apart = exact_drawing(&scene, &screen, &cam, Fill::Shade);
     let svg = write_svg(&merged.drawing, &SvgOptions::default());
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let faces: Vec<Option<&str>> = svg_paths(&doc)
@@ -631,7 +607,7 @@ fn translucent_drawings_blend_as_the_abuffer_does() {
     use sightline::paint::to_u8;
     use sightline::raster::abuffer;
     for seed in 1..=4 {
-        let mut scene = support::random_triangles(40, seed);
+        let mut scene = random_triangles(40, seed);
         let mut glass = scene.materials[0].clone();
         glass.transparency = 0.5;
         glass.diffuse = [0.2, 0.5, 0.9];
@@ -642,9 +618,7 @@ fn translucent_drawings_blend_as_the_abuffer_does() {
         }
         let cam = spec_camera(&scene, (160, 120));
         let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-        let mut drawing = sightline::visibility::BspMethod::default()
-            .run(&scene, &screen, &cam, Fill::Shade)
-            .drawing;
+        let mut drawing = exact_drawing(&scene, &screen, &cam, Fill::Shade).drawing;
         assert!(drawing.items.iter().any(|i| i.opacity < 1.0));
         drawing.background = Some([1.0; 3]);
         let ours = colors(&drawing);

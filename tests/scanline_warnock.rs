@@ -3,11 +3,9 @@
 //! of generated spheres, tori and soups, and of random scenes built around shared edges, edges
 //! through pixel centres and exact coplanar overlaps.
 
-mod raster_scenes;
 mod support;
 
 use proptest::prelude::*;
-use raster_scenes::*;
 use sightline::camera::Camera;
 use sightline::pipeline::prepare;
 use sightline::project::{CullMode, ScreenScene};
@@ -15,6 +13,9 @@ use sightline::raster::scanline::{self, ScanlineStats};
 use sightline::raster::warnock::{self, WarnockStats};
 use sightline::raster::{EMPTY, zbuffer};
 use sightline::scene::{Scene, primitives};
+use support::camera::{cameras, lattice_camera, random_camera};
+use support::fixtures::fixture_paths;
+use support::scenes::tricky_faces;
 
 /// The first pixel where `got` differs from the z-buffer's `want`, described.
 fn first_difference(screen: &ScreenScene, want: &[u32], got: &[u32]) -> Option<String> {
@@ -136,7 +137,7 @@ proptest! {
     ) {
         let scene = tricky_faces(seed, n, false);
         check(&scene, &lattice_camera(), CullMode::Auto);
-        if let Some(cam) = support::random_camera(eye, ortho, fov, near) {
+        if let Some(cam) = random_camera(eye, ortho, fov, near) {
             check(&scene, &cam, CullMode::Auto);
         }
     }

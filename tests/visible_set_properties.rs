@@ -70,7 +70,7 @@ use sightline::visibility::{BspMethod, VisibilityMethod};
 use std::cmp::Ordering;
 use std::f64::consts::TAU;
 use std::sync::atomic::{AtomicUsize, Ordering as AtomicOrdering};
-use support::Rng;
+use support::rng::Rng;
 
 // ------------------------------------------------------------------------------------------------
 // Scenes and cameras

@@ -1,20 +1,15 @@
 //! X3D loading and generated primitives: world-space coordinates, transform composition,
 //! materials, viewpoints, warnings, and closed, outward primitive meshes.
 
+mod support;
+
 use glam::{DMat4, DQuat, DVec3};
 use sightline::scene::primitives::{self, Parts};
-use sightline::scene::{Format, SceneBuilder, load, load_bytes};
+use sightline::scene::{Format, SceneBuilder, load_bytes};
 use sightline::{Location, Material, Scene};
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI};
-use std::path::Path;
-
-fn fixture(name: &str) -> Scene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("fixtures")
-        .join(name);
-    load(&path, None).unwrap_or_else(|e| panic!("{e}"))
-}
+use support::fixtures::fixture;
 
 fn x3d(text: &str) -> Scene {
     load_bytes(text.as_bytes(), Format::X3d, "inline.x3d", None).unwrap_or_else(|e| panic!("{e}"))
