@@ -6,23 +6,14 @@
 mod support;
 
 use std::collections::HashMap;
-use support::cli::{run_err, run_ok};
+use support::cli::{render_ok, run_err};
 use support::seam_measure;
 
 /// Renders to a file in a temporary directory and returns its bytes.
 fn render(input: &str, name: &str, extra: &[&str]) -> Vec<u8> {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join(name);
-    let mut args = vec![
-        "render",
-        input,
-        "--size",
-        "256x256",
-        "-o",
-        out.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    run_ok(&args);
+    render_ok(input, &out, &[&["--size", "256x256"][..], extra].concat());
     std::fs::read(out).unwrap()
 }
 
