@@ -13,9 +13,9 @@ use sightline::project::{CullMode, ScreenScene};
 use sightline::raster::abuffer::{self, ABuffer, Options, Paint};
 use sightline::raster::zbuffer;
 use sightline::scene::{Material, Scene, SceneBuilder, primitives};
-use support::camera::{cameras, front_ortho, lattice_camera, random_camera, spec_camera};
+use support::camera::{cameras, front_ortho, lattice_camera, random_cameras, spec_camera};
 use support::fixtures::{fixture, fixture_paths};
-use support::oracle::pixel_of;
+use support::oracle::assert_seed_transparent_colours;
 use support::rng::Rng;
 use support::scenes::tricky_faces;
 
@@ -57,27 +57,7 @@ fn seed_transparent_scene_gives_the_seed_colours() {
     let cam = spec_camera(&scene, (240, 200));
     let screen = prepare(&scene, &cam, CullMode::Auto).screen;
     let ab = render_checked(&scene, &screen, &cam, Fill::Shade, Options::default());
-    let c = &ab.color;
-    let green = [0.0, 0.6, 0.0];
-    let green_over_blue = [0.0, 0.6, 0.4];
-    let blue = [0.0, 0.0, 1.0];
-    assert_eq!(c[pixel_of(&cam, DVec3::new(-2.0, -1.5, 0.0))], green);
-    assert_eq!(
-        c[pixel_of(&cam, DVec3::new(0.0, -1.5, 0.0))],
-        green_over_blue
-    );
-    assert_eq!(c[pixel_of(&cam, DVec3::new(2.0, -1.5, -1.0))], blue);
-    assert_eq!(c[0], BLACK);
-    // No anti-aliasing: every pixel is exactly one of the four.
-    let mut counts = [0usize; 4];
-    for px in c {
-        let k = [green, green_over_blue, blue, BLACK]
-            .iter()
-            .position(|q| q == px)
-            .unwrap_or_else(|| panic!("unexpected colour {px:?}"));
-        counts[k] += 1;
-    }
-    assert!(counts.iter().all(|&n| n > 1000), "{counts:?}");
+    let counts = assert_seed_transparent_colours(&ab.color, &cam);
     // The green-over-blue pixels are the ones where both triangles cover the centre.
     assert_eq!(ab.stats.blended as usize, counts[0] + counts[1]);
     assert_eq!(ab.stats.max_list, 1);
@@ -314,17 +294,11 @@ proptest! {
         seed in any::<u64>(),
         n in 1usize..30,
         shuffle in any::<u64>(),
-        eye in prop::array::uniform3(-4.0f64..4.0),
-        ortho in any::<bool>(),
-        fov in 20.0f64..100.0,
+        random in random_cameras(Just(0.2)),
         lattice in any::<bool>(),
     ) {
         let scene = tricky_faces(seed, n, true);
-        let cam = if lattice {
-            Some(lattice_camera())
-        } else {
-            random_camera(eye, ortho, fov, 0.2)
-        };
+        let cam = if lattice { Some(lattice_camera()) } else { random };
         prop_assume!(cam.is_some());
         let cam = cam.unwrap();
         let screen = prepare(&scene, &cam, CullMode::Auto).screen;

@@ -4,12 +4,11 @@
 
 mod support;
 
-use glam::DVec3;
-use sightline::camera::{Camera, NamedView, Projection};
+use sightline::camera::{Camera, NamedView};
 use sightline::pipeline::{Fill, render_zbuffer};
 use sightline::project::CullMode;
 use sightline::scene::Scene;
-use support::camera::{fit, look_at, random_camera, spec_camera};
+use support::camera::{fit, random_cameras, soup_camera, spec_camera};
 use support::fixtures::fixture;
 use support::oracle::interior_mismatches;
 use support::scenes::{boxes_and_sphere, random_triangles};
@@ -67,15 +66,7 @@ fn closed_meshes_and_interpenetration() {
 fn random_triangle_soups() {
     for seed in 1..=6 {
         let scene = random_triangles(40, seed);
-        let cam = look_at(
-            DVec3::new(0.4, 0.7, 4.0),
-            DVec3::ZERO,
-            Projection::Perspective { fovy_deg: 50.0 },
-            1.0,
-            8.0,
-            (100, 80),
-        );
-        check(&scene, &cam, 200);
+        check(&scene, &soup_camera((100, 80)), 200);
     }
 }
 
@@ -107,12 +98,9 @@ mod random_scenes {
         fn bsp_matches_zbuffer_at_interior_pixels(
             seed in any::<u64>(),
             n in 1usize..20,
-            eye in prop::array::uniform3(-4.0f64..4.0),
-            ortho in any::<bool>(),
-            fov in 20.0f64..100.0,
+            cam in random_cameras(Just(0.2)),
         ) {
             let scene = random_triangles(n, seed);
-            let cam = random_camera(eye, ortho, fov, 0.2);
             prop_assume!(cam.is_some());
             let cam = cam.unwrap();
             // A case that shows no covered interior pixel compared nothing: rejected, so that

@@ -4,7 +4,7 @@
 mod support;
 
 use glam::DVec3;
-use sightline::camera::{Camera, Projection};
+use sightline::camera::Camera;
 use sightline::output::drawing::{DrawItem, Drawing};
 use sightline::output::json::write_json;
 use sightline::output::raster_drawing::{colors, face_ids};
@@ -13,9 +13,9 @@ use sightline::pipeline::{Fill, prepare, render_zbuffer};
 use sightline::project::CullMode;
 use sightline::scene::primitives::sphere_scene;
 use sightline::scene::{Material, Scene, SceneBuilder};
-use support::camera::{front_ortho, look_at, scene_camera, spec_camera};
+use support::camera::{front_ortho, ortho_down_z, scene_camera, spec_camera};
 use support::fixtures::fixture;
-use support::oracle::{interior_mismatches, pixel_of};
+use support::oracle::{assert_seed_transparent_colours, interior_mismatches};
 use support::scenes::{add_triangle, random_triangles};
 use support::strategy::{
     BspMethod, Painter, VisibilityMethod, exact_drawing, method_by_name, methods, painter_drawing,
@@ -353,29 +353,7 @@ fn check_seed_transparent(method: &dyn VisibilityMethod) {
         r.drawing.items[1].opacity, 0.6,
         "green, in front, drawn last"
     );
-    let c = colors(&r.drawing);
-
-    let green = [0.0, 0.6, 0.0];
-    let green_over_blue = [0.0, 0.6, 0.4];
-    let blue = [0.0, 0.0, 1.0];
-    let black = [0.0; 3];
-    assert_eq!(c[pixel_of(&cam, DVec3::new(-2.0, -1.5, 0.0))], green);
-    assert_eq!(
-        c[pixel_of(&cam, DVec3::new(0.0, -1.5, 0.0))],
-        green_over_blue
-    );
-    assert_eq!(c[pixel_of(&cam, DVec3::new(2.0, -1.5, -1.0))], blue);
-    assert_eq!(c[0], black);
-    // No anti-aliasing: every pixel is exactly one of the four.
-    let mut counts = [0usize; 4];
-    for px in &c {
-        let k = [green, green_over_blue, blue, black]
-            .iter()
-            .position(|q| q == px)
-            .unwrap_or_else(|| panic!("unexpected colour {px:?}"));
-        counts[k] += 1;
-    }
-    assert!(counts.iter().all(|&n| n > 1000), "{counts:?}");
+    assert_seed_transparent_colours(&colors(&r.drawing), &cam);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -459,17 +437,6 @@ fn painter_matches_the_zbuffer_on_a_100k_triangle_sphere_at_1024() {
     eprintln!("sphere: {:?}", t.elapsed());
 }
 
-fn ortho_top_camera(size: u32, height: f64) -> Camera {
-    look_at(
-        DVec3::new(0.0, 0.0, 10.0),
-        DVec3::ZERO,
-        Projection::Orthographic { height },
-        1.0,
-        20.0,
-        (size, size),
-    )
-}
-
 #[test]
 fn painter_fails_on_cyclic_overlap() {
     // Three bars along the sides of a triangle, each rising from its start to its end: at every
@@ -493,7 +460,7 @@ fn painter_fails_on_cyclic_overlap() {
         b.add_face(&v, m);
     }
     let scene = b.finish().unwrap();
-    let cam = ortho_top_camera(160, 3.5);
+    let cam = ortho_down_z(10.0, 3.5, (160, 160));
     let (bad, interior) = painter_mismatches(&scene, &cam);
     assert!(
         bad > 0,
@@ -514,7 +481,7 @@ fn painter_fails_on_interpenetrating_triangles() {
         [p(-0.9, -1.0, -0.5), p(1.1, -1.0, -0.5), p(0.1, 1.0, 0.5)],
     );
     let scene = b.finish().unwrap();
-    let cam = ortho_top_camera(128, 2.5);
+    let cam = ortho_down_z(10.0, 2.5, (128, 128));
     let (bad, interior) = painter_mismatches(&scene, &cam);
     assert!(bad > 100, "{bad} of {interior}");
 }

@@ -1,10 +1,11 @@
 //! The tests' cameras: written once, so that "the front orthographic camera" or "the scene's own
 //! view at 96x72" means one thing in every test. Every camera made here is valid (checked).
 //!
-//! Depends on `sightline` and `glam` only: the benchmarks include this file too.
+//! The benchmarks include this file too (`benches/common`).
 #![allow(dead_code)]
 
 use glam::DVec3;
+use proptest::prelude::*;
 use sightline::camera::{Camera, CameraSpec, NamedView, Projection};
 use sightline::scene::Scene;
 
@@ -31,16 +32,26 @@ pub fn look_at(
     c
 }
 
-/// Orthographic front camera: from (0, 0, 5) down -z, `height` world units high, near 1, far 10.
+/// Orthographic camera from (0, 0, `distance`) down -z, `height` world units high, near 1, far
+/// twice the distance.
+pub fn ortho_down_z(distance: f64, height: f64, size: (u32, u32)) -> Camera {
+    let eye = DVec3::new(0.0, 0.0, distance);
+    let ortho = Projection::Orthographic { height };
+    look_at(eye, DVec3::ZERO, ortho, 1.0, 2.0 * distance, size)
+}
+
+/// The front orthographic camera: from (0, 0, 5) down -z, `height` world units high, near 1,
+/// far 10.
 pub fn front_ortho(height: f64, width: u32, h: u32) -> Camera {
-    look_at(
-        DVec3::new(0.0, 0.0, 5.0),
-        DVec3::ZERO,
-        Projection::Orthographic { height },
-        1.0,
-        10.0,
-        (width, h),
-    )
+    ortho_down_z(5.0, height, (width, h))
+}
+
+/// The perspective camera the random triangle soups are seen through: from (0.4, 0.7, 4) at the
+/// origin, 50 degrees, near 1, far 8 (the soups fill [-1.6, 1.6]^3).
+pub fn soup_camera(size: (u32, u32)) -> Camera {
+    let eye = DVec3::new(0.4, 0.7, 4.0);
+    let perspective = Projection::Perspective { fovy_deg: 50.0 };
+    look_at(eye, DVec3::ZERO, perspective, 1.0, 8.0, size)
 }
 
 /// The scene's own view (its viewpoint, or the default one) as the CLI resolves it, at `size`.
@@ -114,6 +125,19 @@ pub fn random_camera(eye: [f64; 3], ortho: bool, fov: f64, near: f64) -> Option<
         height: 40,
     };
     cam.validate().is_ok().then_some(cam)
+}
+
+/// Proptest's draw of a [`random_camera`]: the eye in [-4, 4)^3, orthographic or not, a field
+/// of view in [20, 100) degrees, the near plane drawn from `near`; `None` where the camera is
+/// invalid (the test decides: reject the case, or skip that camera).
+pub fn random_cameras(near: impl Strategy<Value = f64>) -> impl Strategy<Value = Option<Camera>> {
+    (
+        prop::array::uniform3(-4.0f64..4.0),
+        any::<bool>(),
+        20.0f64..100.0,
+        near,
+    )
+        .prop_map(|(eye, ortho, fov, near)| random_camera(eye, ortho, fov, near))
 }
 
 /// Image size of [`lattice_camera`]: powers of two, so pixel centres fall exactly on the grid.

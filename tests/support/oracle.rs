@@ -1,5 +1,6 @@
 //! References to check renderers against, sharing no code with what they check: a brute-force
-//! ray cast in world space, and the interior pixels where two face-id images must agree.
+//! ray cast in world space, the interior pixels where two face-id images must agree, and the
+//! seed's transparent scene as the course material gives it.
 
 use glam::DVec3;
 use sightline::camera::Camera;
@@ -117,4 +118,32 @@ pub fn pixel_of(camera: &Camera, p: DVec3) -> usize {
     let i = ((q.x + 1.0) / 2.0 * camera.width as f64) as usize;
     let j = ((1.0 - q.y) / 2.0 * camera.height as f64) as usize;
     j * camera.width as usize + i
+}
+
+/// Checks a picture of the seed's transparent scene (`fixtures/seed_transparent.x3d`, over
+/// black, through `camera`): green (0, 0.6, 0) alone, green over blue (0, 0.6, 0.4), blue
+/// (0, 0, 1) and black, each where the seed puts it, every pixel exactly one of the four (no
+/// anti-aliasing), each on more than 1,000 pixels. Returns the four pixel counts in that order.
+pub fn assert_seed_transparent_colours(c: &[[f64; 3]], camera: &Camera) -> [usize; 4] {
+    let green = [0.0, 0.6, 0.0];
+    let green_over_blue = [0.0, 0.6, 0.4];
+    let blue = [0.0, 0.0, 1.0];
+    let black = [0.0; 3];
+    assert_eq!(c[pixel_of(camera, DVec3::new(-2.0, -1.5, 0.0))], green);
+    assert_eq!(
+        c[pixel_of(camera, DVec3::new(0.0, -1.5, 0.0))],
+        green_over_blue
+    );
+    assert_eq!(c[pixel_of(camera, DVec3::new(2.0, -1.5, -1.0))], blue);
+    assert_eq!(c[0], black);
+    let mut counts = [0usize; 4];
+    for px in c {
+        let k = [green, green_over_blue, blue, black]
+            .iter()
+            .position(|q| q == px)
+            .unwrap_or_else(|| panic!("unexpected colour {px:?}"));
+        counts[k] += 1;
+    }
+    assert!(counts.iter().all(|&n| n > 1000), "{counts:?}");
+    counts
 }

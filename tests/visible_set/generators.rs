@@ -538,14 +538,9 @@ fn generate(g: &mut Gen, b: &mut SceneBuilder, kind: Kind, n: usize) {
 /// Orthographic along -z, 40 x 40: world coordinates that are multiples of 1/64 in [-2, 2] snap
 /// to the grid exactly (x·2^21, y·2^21, -z·2^21).
 pub fn exact_camera() -> Camera {
-    look_at(
-        DVec3::new(0.0, 0.0, 4.0),
-        DVec3::ZERO,
-        Projection::Orthographic { height: 4.0 },
-        0.0,
-        8.0,
-        (40, 40),
-    )
+    let eye = DVec3::new(0.0, 0.0, 4.0);
+    let ortho = Projection::Orthographic { height: 4.0 };
+    look_at(eye, DVec3::ZERO, ortho, 0.0, 8.0, (40, 40))
 }
 
 fn random_camera(g: &mut Gen, along_z: bool) -> Camera {
