@@ -15,7 +15,8 @@ use proptest::test_runner::{Config, TestRunner};
 use sightline::scene::{Format, load_bytes};
 use std::cell::Cell;
 use std::time::Instant;
-use support::fixtures::fixtures_dir;
+use support::fixtures::{assert_corner_attributes, fixtures_dir};
+use support::rng::cases_from_env;
 
 const DEFAULT_CASES: u32 = 100_000;
 
@@ -521,18 +522,7 @@ fn fuzz(format: Format, cases: u32) {
         bytes_seen.set(bytes_seen.get() + bytes.len() as u64);
         if let Ok(s) = load_bytes(&bytes, format, "fuzz", None) {
             ok.set(ok.get() + 1);
-            // Per-corner attributes are absent or parallel to the corners.
-            for len in [s.corner_uvs.len(), s.corner_normals.len()] {
-                prop_assert!(len == 0 || len == s.corners.len());
-            }
-            prop_assert!(
-                s.corner_uvs
-                    .iter()
-                    .flatten()
-                    .flatten()
-                    .all(|x| x.is_finite())
-            );
-            prop_assert!(s.corner_normals.iter().flatten().all(|n| n.is_finite()));
+            assert_corner_attributes(&s);
         }
         Ok(())
     });
@@ -549,10 +539,7 @@ fn fuzz(format: Format, cases: u32) {
 }
 
 fn long_cases() -> u32 {
-    std::env::var("SIGHTLINE_FUZZ_CASES")
-        .ok()
-        .and_then(|s| s.replace('_', "").parse().ok())
-        .unwrap_or(1_000_000)
+    cases_from_env("SIGHTLINE_FUZZ_CASES", 1_000_000)
 }
 
 #[test]

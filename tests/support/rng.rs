@@ -1,5 +1,5 @@
 //! The tests' random numbers: a tiny deterministic generator, so that a seed names a scene on
-//! every machine and every run.
+//! every machine and every run; and how many random cases a long run draws.
 
 use glam::DVec3;
 
@@ -25,4 +25,13 @@ impl Rng {
     pub fn vec3(&mut self, lo: f64, hi: f64) -> DVec3 {
         DVec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
     }
+}
+
+/// How many random cases a long run draws: the number in the environment variable `var` (digits,
+/// `_` allowed between them), or `default`.
+pub fn cases_from_env(var: &str, default: u32) -> u32 {
+    std::env::var(var)
+        .ok()
+        .and_then(|s| s.replace('_', "").parse().ok())
+        .unwrap_or(default)
 }

@@ -22,7 +22,7 @@
 
 use crate::generators::{Case, Setup, cases, setup};
 use crate::oracle::*;
-use crate::support::rng::Rng;
+use crate::support::rng::{Rng, cases_from_env};
 use crate::support::strategy::{Bsp, VisibleSet, bsp_walk, coverage_map, exact_drawing};
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
@@ -341,6 +341,9 @@ fn check_paths_agree(case: &Case) -> Result<(), Skip> {
 // Runners
 // ------------------------------------------------------------------------------------------------
 
+/// A property checked on one case; `Err` when the case is skipped.
+type Property = fn(&Case) -> Result<(), Skip>;
+
 /// How a run draws its cases.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Seeding {
@@ -351,7 +354,7 @@ enum Seeding {
     Random,
 }
 
-fn check(name: &str, count: u32, seeding: Seeding, property: fn(&Case) -> Result<(), Skip>) {
+fn check(name: &str, count: u32, seeding: Seeding, property: Property) {
     let mut config = Config {
         cases: count,
         // Skipped cases are rejected and replaced; allow up to one for every case.
@@ -393,92 +396,86 @@ fn check(name: &str, count: u32, seeding: Seeding, property: fn(&Case) -> Result
     }
 }
 
+/// Cases per property in the normal run.
 const CASES: u32 = 2000;
 
-fn long_cases() -> u32 {
-    std::env::var("SIGHTLINE_PROP_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(200_000)
+/// The normal run of a property: [`CASES`] cases from its fixed seed.
+fn normal(name: &str, property: Property) {
+    check(name, CASES, Seeding::Fixed, property);
+}
+
+/// A long run of a property: `SIGHTLINE_PROP_CASES` cases (default 200,000) from a random seed.
+fn long(name: &str, property: Property) {
+    check(
+        name,
+        cases_from_env("SIGHTLINE_PROP_CASES", 200_000),
+        Seeding::Random,
+        property,
+    );
 }
 
 #[test]
 fn disjoint() {
-    check("disjoint", CASES, Seeding::Fixed, check_disjoint);
+    normal("disjoint", check_disjoint);
 }
 
 #[test]
 fn coverage() {
-    check("coverage", CASES, Seeding::Fixed, check_coverage);
+    normal("coverage", check_coverage);
 }
 
 #[test]
 fn nearest() {
-    check("nearest", CASES, Seeding::Fixed, check_nearest);
+    normal("nearest", check_nearest);
 }
 
 #[test]
 fn provenance() {
-    check("provenance", CASES, Seeding::Fixed, check_provenance);
+    normal("provenance", check_provenance);
 }
 
 #[test]
 fn determinism() {
-    check("determinism", CASES, Seeding::Fixed, check_determinism);
+    normal("determinism", check_determinism);
 }
 
 #[test]
 fn paths_agree() {
-    check("paths_agree", CASES, Seeding::Fixed, check_paths_agree);
-}
-
-#[test]
-#[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
-fn paths_agree_long() {
-    check(
-        "paths_agree",
-        long_cases(),
-        Seeding::Random,
-        check_paths_agree,
-    );
+    normal("paths_agree", check_paths_agree);
 }
 
 #[test]
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn disjoint_long() {
-    check("disjoint", long_cases(), Seeding::Random, check_disjoint);
+    long("disjoint", check_disjoint);
 }
 
 #[test]
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn coverage_long() {
-    check("coverage", long_cases(), Seeding::Random, check_coverage);
+    long("coverage", check_coverage);
 }
 
 #[test]
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn nearest_long() {
-    check("nearest", long_cases(), Seeding::Random, check_nearest);
+    long("nearest", check_nearest);
 }
 
 #[test]
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn provenance_long() {
-    check(
-        "provenance",
-        long_cases(),
-        Seeding::Random,
-        check_provenance,
-    );
+    long("provenance", check_provenance);
 }
 
 #[test]
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn determinism_long() {
-    check(
-        "determinism",
-        long_cases(),
-        Seeding::Random,
-        check_determinism,
-    );
+    long("determinism", check_determinism);
+}
+
+#[test]
+#[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
+fn paths_agree_long() {
+    long("paths_agree", check_paths_agree);
 }
