@@ -184,7 +184,8 @@ fn tri_soup(g: &mut Gen, b: &mut SceneBuilder, n: usize) {
     }
 }
 
-fn add_box(g: &mut Gen, b: &mut SceneBuilder, centre: DVec3, size: DVec3) {
+/// A closed box of `size` at `centre`, turned at random (axis-aligned for the exact camera).
+fn add_turned_box(g: &mut Gen, b: &mut SceneBuilder, centre: DVec3, size: DVec3) {
     b.begin_mesh("box");
     let m = b.default_material();
     let rot = if g.dyadic {
@@ -196,7 +197,8 @@ fn add_box(g: &mut Gen, b: &mut SceneBuilder, centre: DVec3, size: DVec3) {
     primitives::add_box(b, &t, size, m);
 }
 
-fn add_sphere(g: &mut Gen, b: &mut SceneBuilder, centre: DVec3, r: f64) {
+/// A closed low-resolution sphere (3 to 7 segments, 2 to 4 rings) at `centre`, turned at random.
+fn add_turned_sphere(g: &mut Gen, b: &mut SceneBuilder, centre: DVec3, r: f64) {
     b.begin_mesh("sphere");
     let m = b.default_material();
     let (seg, rings) = (g.int(3, 7), g.int(2, 4));
@@ -229,12 +231,12 @@ fn closed_meshes(g: &mut Gen, b: &mut SceneBuilder, n: usize) {
         match g.int(0, 2) {
             0 => {
                 let s = g.point(0.3, 1.2);
-                add_box(g, b, c, s);
+                add_turned_box(g, b, c, s);
             }
             1 if spheres == 0 => {
                 spheres += 1;
                 let r = g.rng.range(0.3, 0.8);
-                add_sphere(g, b, c, r);
+                add_turned_sphere(g, b, c, r);
             }
             _ => {
                 let r = g.rng.range(0.3, 0.9);
@@ -264,7 +266,7 @@ fn pair(g: &mut Gen, b: &mut SceneBuilder) {
         1 => {
             // A box pierced by a triangle.
             let s = g.point(0.5, 1.0);
-            add_box(g, b, c, s);
+            add_turned_box(g, b, c, s);
             let d = g.direction();
             add_polygon(
                 b,
@@ -279,8 +281,8 @@ fn pair(g: &mut Gen, b: &mut SceneBuilder) {
             // Two overlapping boxes.
             let (s, t) = (g.point(0.4, 1.0), g.point(0.4, 1.0));
             let e = g.point(-0.3, 0.3);
-            add_box(g, b, c, s);
-            add_box(g, b, c + e, t);
+            add_turned_box(g, b, c, s);
+            add_turned_box(g, b, c + e, t);
         }
         _ => {
             // Two planar quads crossing at an angle (the builder triangulates one that rounding
