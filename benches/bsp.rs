@@ -11,7 +11,7 @@
 mod common;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use sightline::camera::{Camera, NamedView};
+use sightline::camera::Camera;
 use sightline::exact::predicates::fallback_count;
 use sightline::pipeline::prepare;
 use sightline::project::CullMode;
@@ -52,14 +52,7 @@ fn bench(c: &mut Criterion, group: &str, cases: Vec<(String, Scene)>, seconds: u
     g.sample_size(10)
         .measurement_time(Duration::from_secs(seconds));
     for (name, scene) in cases {
-        let cam = Camera::fit(
-            NamedView::Iso,
-            scene.bounds().unwrap(),
-            false,
-            40.0,
-            1024,
-            1024,
-        );
+        let cam = common::iso_1024(&scene);
         report(&format!("{group}/{name}"), &scene, &cam);
         g.throughput(Throughput::Elements(scene.faces.len() as u64));
         g.bench_function(name, |b| b.iter(|| black_box(run(&scene, &cam))));
@@ -95,18 +88,10 @@ fn soups(c: &mut Criterion) {
 }
 
 fn shared_meshes(c: &mut Criterion) {
-    let meshes = common::shared_meshes();
-    if meshes.is_empty() {
-        return;
-    }
-    let mut g = c.benchmark_group("mesh");
-    g.sample_size(10).measurement_time(Duration::from_secs(5));
-    for (stem, scene, cam) in meshes {
+    common::mesh_group(c, 5, |g, stem, scene, cam| {
         report(&format!("mesh/{stem}"), &scene, &cam);
-        g.throughput(Throughput::Elements(scene.faces.len() as u64));
         g.bench_function(stem, |b| b.iter(|| black_box(run(&scene, &cam))));
-    }
-    g.finish();
+    });
 }
 
 criterion_group!(benches, spheres, tori, soups, shared_meshes);

@@ -7,7 +7,6 @@
 mod common;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use sightline::camera::{Camera, NamedView};
 use sightline::pipeline::render_zbuffer;
 use sightline::project::CullMode;
 use sightline::scene::{Format, Scene, load_bytes, primitives::sphere_scene};
@@ -36,14 +35,7 @@ fn spheres(c: &mut Criterion) {
     for n in [10_000usize, 100_000, 1_000_000] {
         let scene = sphere_scene(n);
         let obj = to_obj(&scene);
-        let cam = Camera::fit(
-            NamedView::Iso,
-            scene.bounds().unwrap(),
-            false,
-            40.0,
-            1024,
-            1024,
-        );
+        let cam = common::iso_1024(&scene);
         g.throughput(Throughput::Elements(scene.faces.len() as u64));
         g.bench_function(format!("load+zbuffer/{n}"), |b| {
             b.iter(|| {
@@ -63,22 +55,14 @@ fn spheres(c: &mut Criterion) {
 }
 
 fn shared_meshes(c: &mut Criterion) {
-    let meshes = common::shared_meshes();
-    if meshes.is_empty() {
-        return;
-    }
-    let mut g = c.benchmark_group("mesh");
-    g.sample_size(10).measurement_time(Duration::from_secs(4));
-    for (stem, scene, cam) in meshes {
-        g.throughput(Throughput::Elements(scene.faces.len() as u64));
+    common::mesh_group(c, 4, |g, stem, scene, cam| {
         g.bench_function(format!("zbuffer/{stem}"), |b| {
             b.iter(|| {
                 let (p, zb) = render_zbuffer(&scene, &cam, CullMode::Auto, |_| {});
                 black_box((p.screen.polys.len(), zb.stats.fragments))
             })
         });
-    }
-    g.finish();
+    });
 }
 
 criterion_group!(benches, spheres, shared_meshes);

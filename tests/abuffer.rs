@@ -3,33 +3,26 @@
 //! translucent scene; the image does not depend on the order faces come in; an opaque fragment
 //! removes what it hides, and memory is what the module docs bound.
 
-mod raster_scenes;
 mod support;
 
 use glam::DVec3;
 use proptest::prelude::*;
-use sightline::camera::{Camera, CameraSpec};
+use sightline::camera::Camera;
 use sightline::pipeline::{Fill, prepare};
 use sightline::project::{CullMode, ScreenScene};
 use sightline::raster::abuffer::{self, ABuffer, Options, Paint};
 use sightline::raster::zbuffer;
 use sightline::scene::{Material, Scene, SceneBuilder, primitives};
-use std::path::Path;
-use support::*;
+use support::camera::{cameras, front_ortho, lattice_camera, random_cameras, spec_camera};
+use support::fixtures::{fixture, fixture_paths};
+use support::oracle::assert_seed_transparent_colours;
+use support::rng::Rng;
+use support::scenes::tricky_faces;
 
 const BLACK: [f64; 3] = [0.0; 3];
 
 fn seed_transparent() -> Scene {
-    sightline::load(Path::new("fixtures/seed_transparent.x3d"), None).unwrap()
-}
-
-fn spec_camera(scene: &Scene, size: (u32, u32)) -> Camera {
-    CameraSpec {
-        size: Some(size),
-        ..CameraSpec::default()
-    }
-    .resolve(scene.bounds().unwrap(), scene.viewpoint.as_ref())
-    .unwrap()
+    fixture("seed_transparent.x3d")
 }
 
 /// Renders with the A-buffer and checks its nearest-fragment image against the z-buffer's.
@@ -64,27 +57,7 @@ fn seed_transparent_scene_gives_the_seed_colours() {
     let cam = spec_camera(&scene, (240, 200));
     let screen = prepare(&scene, &cam, CullMode::Auto).screen;
     let ab = render_checked(&scene, &screen, &cam, Fill::Shade, Options::default());
-    let c = &ab.color;
-    let green = [0.0, 0.6, 0.0];
-    let green_over_blue = [0.0, 0.6, 0.4];
-    let blue = [0.0, 0.0, 1.0];
-    assert_eq!(c[pixel_of(&cam, DVec3::new(-2.0, -1.5, 0.0))], green);
-    assert_eq!(
-        c[pixel_of(&cam, DVec3::new(0.0, -1.5, 0.0))],
-        green_over_blue
-    );
-    assert_eq!(c[pixel_of(&cam, DVec3::new(2.0, -1.5, -1.0))], blue);
-    assert_eq!(c[0], BLACK);
-    // No anti-aliasing: every pixel is exactly one of the four.
-    let mut counts = [0usize; 4];
-    for px in c {
-        let k = [green, green_over_blue, blue, BLACK]
-            .iter()
-            .position(|q| q == px)
-            .unwrap_or_else(|| panic!("unexpected colour {px:?}"));
-        counts[k] += 1;
-    }
-    assert!(counts.iter().all(|&n| n > 1000), "{counts:?}");
+    let counts = assert_seed_transparent_colours(&ab.color, &cam);
     // The green-over-blue pixels are the ones where both triangles cover the centre.
     assert_eq!(ab.stats.blended as usize, counts[0] + counts[1]);
     assert_eq!(ab.stats.max_list, 1);
@@ -164,9 +137,9 @@ fn check_opaque(scene: &Scene, cam: &Camera, fill: Fill) {
 
 #[test]
 fn opaque_scenes_give_the_zbuffer_image() {
-    for path in raster_scenes::fixture_paths() {
+    for path in fixture_paths() {
         let scene = sightline::load(&path, None).unwrap();
-        for cam in raster_scenes::cameras(&scene, 64, 48) {
+        for cam in cameras(&scene, 64, 48) {
             // The id fill is opaque whatever the materials say.
             check_opaque(&scene, &cam, Fill::Id);
             let translucent = scene.materials.iter().any(|m| m.transparency > 0.0);
@@ -178,7 +151,7 @@ fn opaque_scenes_give_the_zbuffer_image() {
     let sphere = primitives::sphere_scene(2000);
     let tori = primitives::interlocked_tori(32, 12);
     for scene in [&sphere, &tori] {
-        for cam in raster_scenes::cameras(scene, 120, 90) {
+        for cam in cameras(scene, 120, 90) {
             check_opaque(scene, &cam, Fill::Shade);
         }
     }
@@ -188,9 +161,9 @@ fn opaque_scenes_give_the_zbuffer_image() {
 fn translucent_fixtures_keep_the_zbuffer_polygon_in_front() {
     // cube.obj has a translucent material, seed_transparent.x3d a translucent triangle.
     let mut blended = 0;
-    for path in raster_scenes::fixture_paths() {
+    for path in fixture_paths() {
         let scene = sightline::load(&path, None).unwrap();
-        for cam in raster_scenes::cameras(&scene, 64, 48) {
+        for cam in cameras(&scene, 64, 48) {
             let screen = prepare(&scene, &cam, CullMode::Off).screen;
             for opaque_first in [true, false] {
                 let ab =
@@ -219,21 +192,6 @@ fn square(b: &mut SceneBuilder, half: f64, z: f64, color: [f64; 3], transparency
     b.add_face(&v, m);
 }
 
-fn front_camera(w: u32, h: u32) -> Camera {
-    let c = Camera {
-        eye: DVec3::new(0.0, 0.0, 5.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: sightline::camera::Projection::Orthographic { height: 4.0 },
-        near: 1.0,
-        far: 10.0,
-        width: w,
-        height: h,
-    };
-    c.validate().unwrap();
-    c
-}
-
 #[test]
 fn layers_blend_back_to_front_whatever_the_order_they_come_in() {
     let red = [1.0, 0.0, 0.0];
@@ -255,7 +213,7 @@ fn layers_blend_back_to_front_whatever_the_order_they_come_in() {
     let c2 = over(c1, blue, 0.25);
     let c3 = over(c2, green, 0.5);
     assert_eq!(c3, [0.125, 0.5, 0.375]);
-    let cam = front_camera(40, 40);
+    let cam = front_ortho(4.0, 40, 40);
     let centre = 20 * 40 + 20;
     let mut images = Vec::new();
     for order in [[0, 1, 2, 3], [3, 2, 1, 0], [2, 0, 3, 1], [1, 3, 0, 2]] {
@@ -292,7 +250,7 @@ fn an_opaque_fragment_removes_the_translucent_ones_it_hides() {
     square(&mut b, 1.0, 1.0, [0.0, 1.0, 0.0], 0.5);
     square(&mut b, 1.25, 0.0, [1.0, 0.0, 0.0], 0.0);
     let scene = b.finish().unwrap();
-    let cam = front_camera(32, 32);
+    let cam = front_ortho(4.0, 32, 32);
     let screen = prepare(&scene, &cam, CullMode::Auto).screen;
     let input = render_checked(
         &scene,
@@ -336,17 +294,11 @@ proptest! {
         seed in any::<u64>(),
         n in 1usize..30,
         shuffle in any::<u64>(),
-        eye in prop::array::uniform3(-4.0f64..4.0),
-        ortho in any::<bool>(),
-        fov in 20.0f64..100.0,
+        random in random_cameras(Just(0.2)),
         lattice in any::<bool>(),
     ) {
-        let scene = raster_scenes::tricky_faces(seed, n, true);
-        let cam = if lattice {
-            Some(raster_scenes::lattice_camera())
-        } else {
-            random_camera(eye, ortho, fov, 0.2)
-        };
+        let scene = tricky_faces(seed, n, true);
+        let cam = if lattice { Some(lattice_camera()) } else { random };
         prop_assume!(cam.is_some());
         let cam = cam.unwrap();
         let screen = prepare(&scene, &cam, CullMode::Auto).screen;

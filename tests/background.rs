@@ -3,34 +3,17 @@
 //! `--background R,G,B|none`. The seed's transparent scene then shows the course material's
 //! colours: green with transparency 0.4 over black (0, 153, 0), over the blue (0, 153, 102).
 
-#[path = "support/seam_measure.rs"]
-mod seam_measure;
+mod support;
 
 use std::collections::HashMap;
-use std::process::{Command, Output};
-
-fn sightline(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sightline"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use support::cli::{render_ok, run_err};
+use support::seam_measure;
 
 /// Renders to a file in a temporary directory and returns its bytes.
 fn render(input: &str, name: &str, extra: &[&str]) -> Vec<u8> {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join(name);
-    let mut args = vec![
-        "render",
-        input,
-        "--size",
-        "256x256",
-        "-o",
-        out.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    let o = sightline(&args);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    render_ok(input, &out, &[&["--size", "256x256"][..], extra].concat());
     std::fs::read(out).unwrap()
 }
 
@@ -113,7 +96,7 @@ fn background_none_gives_an_svg_without_a_background() {
     // PNG has no transparency here: refused, not ignored.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("c.png");
-    let o = sightline(&[
+    let (code, err) = run_err(&[
         "render",
         "fixtures/cube.obj",
         "--background",
@@ -121,10 +104,9 @@ fn background_none_gives_an_svg_without_a_background() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert!(!o.status.success());
+    assert_ne!(code, Some(0));
     assert!(
-        String::from_utf8_lossy(&o.stderr).contains("--background none applies to SVG output"),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
+        err.contains("--background none applies to SVG output"),
+        "{err}"
     );
 }

@@ -1,14 +1,12 @@
 //! The command line as users run it.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod support;
 
-fn sightline(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sightline"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
+use std::path::{Path, PathBuf};
+use support::cli::{
+    decode_png, on_a_terminal, render_ok, run_err, run_ok, sightline, spawn_piped, wait_with_stderr,
+};
+use support::fixtures::fixture_paths;
 
 fn tmp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("sightline-cli-{}", std::process::id()));
@@ -16,56 +14,22 @@ fn tmp(name: &str) -> PathBuf {
     dir.join(name)
 }
 
-fn decode(bytes: &[u8]) -> image::DynamicImage {
-    image::load_from_memory_with_format(bytes, image::ImageFormat::Png).expect("valid PNG")
-}
-
 #[test]
 fn render_writes_a_png_of_the_requested_size() {
     let out = tmp("cube.png");
-    let o = sightline(&[
-        "render",
-        "fixtures/cube.obj",
-        "-o",
-        out.to_str().unwrap(),
-        "--size",
-        "64x48",
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let img = decode(&std::fs::read(&out).unwrap());
+    render_ok("fixtures/cube.obj", &out, &["--size", "64x48"]);
+    let img = decode_png(&std::fs::read(&out).unwrap());
     assert_eq!((img.width(), img.height()), (64, 48));
 }
 
 #[test]
 fn negative_values_work_with_and_without_equals() {
-    let a = sightline(&[
-        "render",
-        "fixtures/cube.obj",
-        "-o",
-        "-",
-        "--size",
-        "32x32",
-        "--eye",
-        "-3,2,4",
-        "--fill",
-        "id",
-    ]);
-    let b = sightline(&[
-        "render",
-        "fixtures/cube.obj",
-        "-o",
-        "-",
-        "--size",
-        "32x32",
-        "--eye=-3,2,4",
-        "--fill",
-        "id",
-    ]);
-    assert!(a.status.success(), "{}", String::from_utf8_lossy(&a.stderr));
-    assert!(b.status.success(), "{}", String::from_utf8_lossy(&b.stderr));
+    let render = ["render", "fixtures/cube.obj", "-o", "-", "--size", "32x32"];
+    let a = run_ok(&[&render[..], &["--eye", "-3,2,4", "--fill", "id"]].concat());
+    let b = run_ok(&[&render[..], &["--eye=-3,2,4", "--fill", "id"]].concat());
     assert_eq!(a.stdout, b.stdout);
     // Some pixel shows the cube.
-    let img = decode(&a.stdout).to_rgb8();
+    let img = decode_png(&a.stdout).to_rgb8();
     assert!(img.pixels().any(|p| p.0 != [0, 0, 0]));
 }
 
@@ -81,9 +45,8 @@ fn output_is_deterministic() {
         "--view",
         "iso",
     ];
-    let a = sightline(&args);
+    let a = run_ok(&args);
     let b = sightline(&args);
-    assert!(a.status.success());
     assert_eq!(a.stdout, b.stdout, "same input, same bytes");
 }
 
@@ -91,7 +54,7 @@ fn output_is_deterministic() {
 fn seed_depth_png_through_the_cli() {
     let out = tmp("seed.png");
     let depth = tmp("seed_depth.png");
-    let o = sightline(&[
+    run_ok(&[
         "render",
         "fixtures/seed_two_triangles.x3d",
         "--near",
@@ -105,8 +68,7 @@ fn seed_depth_png_through_the_cli() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let d = decode(&std::fs::read(&depth).unwrap()).to_luma16();
+    let d = decode_png(&std::fs::read(&depth).unwrap()).to_luma16();
     let mut values: Vec<u16> = d.pixels().map(|p| p.0[0]).collect();
     values.sort_unstable();
     values.dedup();
@@ -163,8 +125,7 @@ fn help_has_examples() {
 
 #[test]
 fn info_reports_closedness_culling_and_stages() {
-    let o = sightline(&["info", "fixtures/cube.obj", "--view", "iso"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run_ok(&["info", "fixtures/cube.obj", "--view", "iso"]);
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(text.contains("1 closed, 0 open"), "{text}");
     assert!(
@@ -197,15 +158,7 @@ fn writes_into_the_target_directory_only() {
     let dir = tmp("atomic");
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("a.png");
-    let o = sightline(&[
-        "render",
-        "fixtures/cube.obj",
-        "-o",
-        out.to_str().unwrap(),
-        "--size",
-        "16x16",
-    ]);
-    assert!(o.status.success());
+    render_ok("fixtures/cube.obj", &out, &["--size", "16x16"]);
     let names: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name())
@@ -247,12 +200,7 @@ fn every_malformed_fixture_fails_cleanly_through_the_cli() {
 fn compare_interior_mismatch(file: &str, method: &str, extra: &[&str]) -> usize {
     let mut args = vec!["compare", file, "--method", method, "--size", "160x120"];
     args.extend_from_slice(extra);
-    let o = sightline(&args);
-    assert!(
-        o.status.success(),
-        "{file}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let o = run_ok(&args);
     let text = String::from_utf8_lossy(&o.stdout).to_string();
     let line = text
         .lines()
@@ -266,17 +214,7 @@ fn compare_interior_mismatch(file: &str, method: &str, extra: &[&str]) -> usize 
 
 #[test]
 fn compare_bsp_has_no_interior_mismatch_on_any_fixture() {
-    let mut files: Vec<PathBuf> = std::fs::read_dir("fixtures")
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| {
-            p.extension()
-                .is_some_and(|e| ["obj", "stl", "ply", "x3d"].contains(&e.to_str().unwrap()))
-        })
-        .collect();
-    files.sort();
-    assert!(files.len() >= 10);
-    for f in &files {
+    for f in &fixture_paths() {
         let f = f.to_str().unwrap();
         for view in ["iso", "front", "top"] {
             assert_eq!(
@@ -305,7 +243,7 @@ fn compare_painter_fails_on_cyclic_and_interpenetrating_scenes() {
 
 #[test]
 fn render_bsp_writes_svg_and_json() {
-    let o = sightline(&[
+    let o = run_ok(&[
         "render",
         "fixtures/cube.obj",
         "--method",
@@ -315,7 +253,6 @@ fn render_bsp_writes_svg_and_json() {
         "--size",
         "64x64",
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let svg = String::from_utf8(o.stdout).unwrap();
     let doc = roxmltree::Document::parse(&svg).expect("well-formed SVG");
     let faces: Vec<&str> = doc
@@ -324,7 +261,7 @@ fn render_bsp_writes_svg_and_json() {
         .collect();
     assert!(!faces.is_empty() && faces.len() <= 6 * 4, "{faces:?}");
     let out = tmp("cube.json");
-    let o = sightline(&[
+    run_ok(&[
         "render",
         "fixtures/cube.obj",
         "--method",
@@ -334,7 +271,6 @@ fn render_bsp_writes_svg_and_json() {
         "--size",
         "64x64",
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
     assert!(
         v["faces"].as_array().is_some_and(|f| f.len() == 3),
@@ -368,8 +304,7 @@ fn compare_takes_any_two_methods() {
             "--view",
             "front",
         ];
-        let o = sightline(&args);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let o = run_ok(&args);
         let text = String::from_utf8_lossy(&o.stdout).to_string();
         assert!(
             text.starts_with(&format!("{method} vs {against}")),
@@ -402,7 +337,7 @@ fn image_space_methods_render_png_and_refuse_svg() {
     let dir = tempfile::tempdir().unwrap();
     for m in ["abuffer", "scanline", "warnock"] {
         let png = dir.path().join(format!("{m}.png"));
-        let o = sightline(&[
+        run_ok(&[
             "render",
             "fixtures/seed_transparent.x3d",
             "--method",
@@ -410,11 +345,6 @@ fn image_space_methods_render_png_and_refuse_svg() {
             "-o",
             png.to_str().unwrap(),
         ]);
-        assert!(
-            o.status.success(),
-            "{m}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
         assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
         let svg = dir.path().join(format!("{m}.svg"));
         let o = sightline(&[
@@ -434,23 +364,10 @@ fn image_space_methods_render_png_and_refuse_svg() {
 /// A reader that stops early (`| head -1`) ends the run quietly, not with a panic.
 #[test]
 fn closed_standard_output_is_not_a_panic() {
-    use std::io::Read;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_sightline"))
-        .args(["info", "fixtures/cube.obj"])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
+    let mut child = spawn_piped(&["info", "fixtures/cube.obj"]);
     // Close our end of standard output before it writes.
     drop(child.stdout.take());
-    let status = child.wait().unwrap();
-    let mut err = String::new();
-    child
-        .stderr
-        .take()
-        .unwrap()
-        .read_to_string(&mut err)
-        .unwrap();
+    let (status, err) = wait_with_stderr(child);
     assert!(!err.contains("panicked"), "{err}");
     assert!(status.success(), "{status:?}: {err}");
 }
@@ -465,8 +382,7 @@ fn lights_and_specular_change_the_fills() {
         let mut args = vec!["render", "fixtures/cube.obj", "--method", "bsp", "-o"];
         args.push(out.to_str().unwrap());
         args.extend_from_slice(extra);
-        let o = sightline(&args);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        run_ok(&args);
         let svg = std::fs::read_to_string(&out).unwrap();
         let doc = roxmltree::Document::parse(&svg).unwrap();
         // The filled regions (seam strokes under them have no fill of their own).
@@ -535,7 +451,7 @@ fn shading_modes_change_the_png() {
     let dir = tempfile::tempdir().unwrap();
     let render = |mode: &str| -> Vec<u8> {
         let out = dir.path().join(format!("{mode}.png"));
-        let o = sightline(&[
+        run_ok(&[
             "render",
             "fixtures/primitives.x3d",
             "--shading",
@@ -545,7 +461,6 @@ fn shading_modes_change_the_png() {
             "-o",
             out.to_str().unwrap(),
         ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         image::open(&out).unwrap().to_rgb8().into_raw()
     };
     let (flat, gouraud, phong) = (render("flat"), render("gouraud"), render("phong"));
@@ -558,44 +473,23 @@ fn shading_modes_change_the_png() {
 #[test]
 fn png_to_a_closed_standard_output_is_not_an_error() {
     use std::io::Read;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_sightline"))
-        .args([
-            "render",
-            "fixtures/primitives.x3d",
-            "--size",
-            "3000x3000",
-            "-o",
-            "-",
-        ])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
+    let mut child = spawn_piped(&[
+        "render",
+        "fixtures/primitives.x3d",
+        "--size",
+        "3000x3000",
+        "-o",
+        "-",
+    ]);
     // Read a few bytes of the PNG (> 64 KiB, more than a pipe holds), then hang up.
     let mut stdout = child.stdout.take().unwrap();
     let mut head = [0u8; 8];
     stdout.read_exact(&mut head).unwrap();
     assert_eq!(&head, b"\x89PNG\r\n\x1a\n");
     drop(stdout);
-    let status = child.wait().unwrap();
-    let mut err = String::new();
-    child
-        .stderr
-        .take()
-        .unwrap()
-        .read_to_string(&mut err)
-        .unwrap();
+    let (status, err) = wait_with_stderr(child);
     assert!(status.success(), "{status:?}: {err}");
     assert!(!err.contains("error") && !err.contains("panicked"), "{err}");
-}
-
-/// Runs the binary and returns (exit code, stderr).
-fn run_err(args: &[&str]) -> (Option<i32>, String) {
-    let o = sightline(args);
-    (
-        o.status.code(),
-        String::from_utf8_lossy(&o.stderr).to_string(),
-    )
 }
 
 /// The same input and flags give the same bytes: timings go to `--stats` (stderr), never into
@@ -617,12 +511,7 @@ fn outputs_are_byte_identical_across_runs() {
             let mut args = vec!["render", "fixtures/cyclic_bars.obj", "--size", "96x72"];
             args.extend_from_slice(extra);
             args.extend(["-o", out.to_str().unwrap()]);
-            let o = sightline(&args);
-            assert!(
-                o.status.success(),
-                "{name}: {}",
-                String::from_utf8_lossy(&o.stderr)
-            );
+            run_ok(&args);
             std::fs::read(&out).unwrap()
         };
         let first = run(0);
@@ -640,7 +529,7 @@ fn outputs_are_byte_identical_across_runs() {
 /// flags, and `info` says orthographic.
 #[test]
 fn orthographic_cam_file_renders_orthographically() {
-    let by_file = sightline(&[
+    let by_file = run_ok(&[
         "render",
         "fixtures/cyclic_bars.obj",
         "--cam",
@@ -650,12 +539,7 @@ fn orthographic_cam_file_renders_orthographically() {
         "--fill",
         "id",
     ]);
-    assert!(
-        by_file.status.success(),
-        "{}",
-        String::from_utf8_lossy(&by_file.stderr)
-    );
-    let by_flags = sightline(&[
+    let by_flags = run_ok(&[
         "render",
         "fixtures/cyclic_bars.obj",
         "--eye",
@@ -677,9 +561,8 @@ fn orthographic_cam_file_renders_orthographically() {
         "--fill",
         "id",
     ]);
-    assert!(by_flags.status.success());
     assert_eq!(by_file.stdout, by_flags.stdout);
-    let img = decode(&by_file.stdout).to_rgb8();
+    let img = decode_png(&by_file.stdout).to_rgb8();
     assert_eq!(img.dimensions(), (160, 160));
     assert!(img.pixels().any(|p| p.0 != [0, 0, 0]), "the bars are seen");
     let o = sightline(&[
@@ -709,13 +592,12 @@ fn cam_file_errors_name_file_and_line() {
     let dos = dir.path().join("dos.cam");
     let text = std::fs::read_to_string("fixtures/cyclic_bars.cam").unwrap();
     std::fs::write(&dos, format!("\u{feff}{}", text.replace('\n', "\r\n"))).unwrap();
-    let o = sightline(&[
+    let o = run_ok(&[
         "info",
         "fixtures/cyclic_bars.obj",
         "--cam",
         dos.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(String::from_utf8_lossy(&o.stdout).contains("orthographic, height 6"));
     // An orthographic file may put its near plane behind the eye; --fov makes it perspective,
     // and the file's near is then the error, named with the file.
@@ -734,7 +616,7 @@ fn cam_file_errors_name_file_and_line() {
     let (code, err) = run_err(&["info", "fixtures/cube.obj", "--cam", cam, "--fov", "30"]);
     assert_eq!(code, Some(1));
     assert!(err.contains("ortho.cam: near -5 is not > 0"), "{err}");
-    let o = sightline(&[
+    run_ok(&[
         "info",
         "fixtures/cube.obj",
         "--cam",
@@ -744,7 +626,6 @@ fn cam_file_errors_name_file_and_line() {
         "--near",
         "1",
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 /// Every camera file of the shared benchmark meshes loads and makes a valid camera.
@@ -891,7 +772,12 @@ fn a_camera_that_sees_nothing_writes_empty_output_and_warns() {
         );
         let bytes = std::fs::read(&out).unwrap();
         match name {
-            "e.png" => assert!(decode(&bytes).to_rgb8().pixels().all(|p| p.0 == [255; 3])),
+            "e.png" => assert!(
+                decode_png(&bytes)
+                    .to_rgb8()
+                    .pixels()
+                    .all(|p| p.0 == [255; 3])
+            ),
             "e.svg" => assert!(!String::from_utf8_lossy(&bytes).contains("<path")),
             _ => {
                 let v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
@@ -909,9 +795,8 @@ fn the_first_command_shows_three_shades_of_the_cube() {
     let dir = tempfile::tempdir().unwrap();
     for input in ["fixtures/cube.obj", "fixtures/cube_ascii.stl"] {
         let out = dir.path().join("cube.png");
-        let o = sightline(&["render", input, "-o", out.to_str().unwrap()]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let img = decode(&std::fs::read(&out).unwrap()).to_rgb8();
+        run_ok(&["render", input, "-o", out.to_str().unwrap()]);
+        let img = decode_png(&std::fs::read(&out).unwrap()).to_rgb8();
         let mut count = std::collections::HashMap::<[u8; 3], usize>::new();
         for p in img.pixels().filter(|p| p.0 != [255; 3]) {
             *count.entry(p.0).or_default() += 1;
@@ -933,13 +818,8 @@ fn the_first_command_shows_three_shades_of_the_cube() {
 /// `script`, which gives it a pseudo-terminal, when `script` is installed.
 #[test]
 fn png_is_not_written_onto_a_terminal() {
-    let script = |cmd: &str| {
-        Command::new("script")
-            .args(["-qec", cmd, "/dev/null"])
-            .output()
-    };
     let bin = env!("CARGO_BIN_EXE_sightline");
-    let Ok(o) = script(&format!("{bin} render fixtures/cube.obj --size 8x8 -o -")) else {
+    let Some(o) = on_a_terminal(&format!("{bin} render fixtures/cube.obj --size 8x8 -o -")) else {
         println!("`script` is not installed: the terminal decision is tested in main.rs only");
         return;
     };
@@ -951,7 +831,7 @@ fn png_is_not_written_onto_a_terminal() {
     );
     assert!(!text.contains("PNG\r\n\u{1a}"), "no PNG bytes: {text}");
     // Named as a path, the terminal is refused too.
-    let o = script(&format!(
+    let o = on_a_terminal(&format!(
         "{bin} render fixtures/cube.obj --size 8x8 --to png -o /dev/stdout"
     ))
     .unwrap();
@@ -961,7 +841,7 @@ fn png_is_not_written_onto_a_terminal() {
         text.contains("not writing a binary PNG to a terminal"),
         "{text}"
     );
-    let o = script(&format!(
+    let o = on_a_terminal(&format!(
         "{bin} render fixtures/cube.obj --size 8x8 --to svg -o -"
     ))
     .unwrap();
@@ -1009,7 +889,7 @@ fn flags_that_do_not_apply_to_the_output_are_errors() {
     }
     // Where they apply, they are accepted.
     let out = dir.path().join("ok.svg");
-    let o = sightline(&[
+    run_ok(&[
         "render",
         "fixtures/cube.obj",
         "--stroke",
@@ -1017,7 +897,6 @@ fn flags_that_do_not_apply_to_the_output_are_errors() {
         "-o",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 /// Without --method the output chooses: the exact visible set for SVG and JSON, the z-buffer for
@@ -1031,7 +910,7 @@ fn default_method_follows_the_output() {
         ("d.json", "coverage"),
         ("d.png", "zbuffer"),
     ] {
-        let o = sightline(&[
+        run_ok(&[
             "render",
             "fixtures/cube.obj",
             "--size",
@@ -1039,13 +918,8 @@ fn default_method_follows_the_output() {
             "-o",
             &path(name),
         ]);
-        assert!(
-            o.status.success(),
-            "{name}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
         let explicit = format!("m{name}");
-        let o = sightline(&[
+        run_ok(&[
             "render",
             "fixtures/cube.obj",
             "--size",
@@ -1055,7 +929,6 @@ fn default_method_follows_the_output() {
             "-o",
             &path(&explicit),
         ]);
-        assert!(o.status.success());
         assert_eq!(
             std::fs::read(path(name)).unwrap(),
             std::fs::read(path(&explicit)).unwrap(),
@@ -1082,8 +955,7 @@ fn warnings_name_the_file_once() {
 
 /// (covered, interior) of `compare`'s report.
 fn compare_counts(args: &[&str]) -> (usize, usize) {
-    let o = sightline(args);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run_ok(args);
     let text = String::from_utf8_lossy(&o.stdout).to_string();
     let count = |label: &str| -> usize {
         let line = text
@@ -1114,7 +986,7 @@ fn compare_diff_marks_mismatched_pixels_in_red() {
     let dir = tempfile::tempdir().unwrap();
     let red_pixels = |file: &str, method: &str| -> usize {
         let out = dir.path().join(format!("{method}.png"));
-        let o = sightline(&[
+        run_ok(&[
             "compare",
             file,
             "--method",
@@ -1126,8 +998,7 @@ fn compare_diff_marks_mismatched_pixels_in_red() {
             "--diff",
             out.to_str().unwrap(),
         ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let img = decode(&std::fs::read(&out).unwrap()).to_rgb8();
+        let img = decode_png(&std::fs::read(&out).unwrap()).to_rgb8();
         assert_eq!(img.dimensions(), (96, 72));
         assert!(img.pixels().any(|p| p.0 == [255; 3]), "white background");
         assert!(
@@ -1152,7 +1023,7 @@ fn progress_is_silent_when_stderr_is_not_a_terminal() {
         ("fixtures/cube_ascii.stl", "zbuffer", "x.png"),
     ] {
         let out = dir.path().join(out);
-        let o = sightline(&[
+        let o = run_ok(&[
             "render",
             input,
             "--method",
@@ -1160,7 +1031,6 @@ fn progress_is_silent_when_stderr_is_not_a_terminal() {
             "-o",
             out.to_str().unwrap(),
         ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         assert!(
             o.stderr.is_empty(),
             "{input} {method}: {:?}",
@@ -1209,10 +1079,7 @@ fn progress_bars_are_labelled_on_a_terminal() {
         mesh.display(),
         out.display()
     );
-    let Ok(o) = Command::new("script")
-        .args(["-qec", &cmd, "/dev/null"])
-        .output()
-    else {
+    let Some(o) = on_a_terminal(&cmd) else {
         println!("`script` is not installed: bars on a terminal not checked");
         return;
     };

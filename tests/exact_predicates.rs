@@ -2,6 +2,8 @@
 //! on adversarial ones: points exactly on (or one grid unit off) the query plane or line, nearly
 //! parallel planes, tiny and extreme coordinates.
 
+mod support;
+
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
@@ -20,13 +22,7 @@ fn q(v: i128) -> Q {
 }
 
 fn sign(v: &Q) -> Ordering {
-    if v.is_zero() {
-        Ordering::Equal
-    } else if v.is_positive() {
-        Ordering::Greater
-    } else {
-        Ordering::Less
-    }
+    v.cmp(&Q::zero())
 }
 
 fn coeffs(p: &Plane) -> [Q; 4] {
@@ -333,18 +329,19 @@ fn adversarial_inputs_reach_the_exact_path() {
 /// vertices and edges, and three faces cut pairwise meeting in one point.
 #[test]
 fn piece_sign_shortcuts_agree_with_the_reference() {
-    use sightline::camera::{Camera, NamedView};
+    use sightline::camera::NamedView;
     use sightline::pipeline::prepare;
     use sightline::project::CullMode;
     use sightline::scene::primitives::{interlocked_tori, random_triangle_soup};
-    use sightline::visibility::coverage_map::visible_set;
+    use support::camera::fit;
+    use support::strategy::coverage_map;
 
     let scenes = [random_triangle_soup(16, 7), interlocked_tori(10, 6)];
     let mut zeros = 0;
     for scene in &scenes {
-        let cam = Camera::fit(NamedView::Iso, scene.bounds().unwrap(), false, 40.0, 64, 64);
+        let cam = fit(scene, NamedView::Iso, false, 64, 64);
         let screen = prepare(scene, &cam, CullMode::Off).screen;
-        let (visible, _) = visible_set(&screen);
+        let (visible, _) = coverage_map(&screen);
         let pieces = &visible.pieces;
         // Every line and plane the visible pieces are made of, tried at every vertex.
         let lines: Vec<Line> = pieces.iter().flat_map(|p| p.lines.clone()).collect();

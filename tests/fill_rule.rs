@@ -3,39 +3,14 @@
 
 mod support;
 
-use glam::DVec3;
-use sightline::camera::{Camera, Projection};
 use sightline::pipeline::render_zbuffer;
 use sightline::project::CullMode;
 use sightline::raster::EMPTY;
 use sightline::scene::SceneBuilder;
-use support::Rng;
-
-const W: u32 = 64;
-const H: u32 = 32; // powers of two: pixel centres fall exactly on the snapping grid
-
-/// Orthographic front camera: world x in [-2, 2], y in [-1, 1] fills the image.
-fn camera() -> Camera {
-    Camera {
-        eye: DVec3::new(0.0, 0.0, 5.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: Projection::Orthographic { height: 2.0 },
-        near: 1.0,
-        far: 10.0,
-        width: W,
-        height: H,
-    }
-}
-
-/// World position of the centre of pixel (i, j).
-fn sample(i: i64, j: i64) -> DVec3 {
-    DVec3::new(
-        ((2 * i + 1) as f64 / W as f64 - 1.0) * 2.0,
-        1.0 - (2 * j + 1) as f64 / H as f64,
-        0.0,
-    )
-}
+// The lattice camera's image is 64 x 32, powers of two: pixel centres fall exactly on the
+// snapping grid, and `lattice_point(i, j, z)` is the centre of pixel (i, j).
+use support::camera::{LATTICE_H as H, LATTICE_W as W, lattice_camera, lattice_point};
+use support::rng::Rng;
 
 /// Tiles the pixel-centre rectangle [i0, i0 + step·n] x [j0, j0 + step·m] with triangles (and
 /// every third cell a quad), vertices on pixel centres; `jitter` moves interior vertices off them.
@@ -54,7 +29,7 @@ fn tiling(
     let mut idx = vec![0u32; ((n + 1) * (m + 1)) as usize];
     for y in 0..=m {
         for x in 0..=n {
-            let mut p = sample(i0 + step * x, j0 + step * y);
+            let mut p = lattice_point(i0 + step * x, j0 + step * y, 0.0);
             if x > 0 && x < n && y > 0 && y < m {
                 p.x += rng.range(-jitter, jitter);
                 p.y += rng.range(-jitter, jitter);
@@ -84,8 +59,7 @@ fn tiling(
 }
 
 fn check_exact_once(scene: &sightline::Scene, i0: i64, j0: i64, i1: i64, j1: i64) -> u64 {
-    let cam = camera();
-    let (_, zb) = render_zbuffer(scene, &cam, CullMode::Off, |_| {});
+    let (_, zb) = render_zbuffer(scene, &lattice_camera(), CullMode::Off, |_| {});
     let mut covered = 0u64;
     for j in 0..H as i64 {
         for i in 0..W as i64 {

@@ -7,7 +7,7 @@
 //! `SIGHTLINE_FUZZ_CASES` cases (default 1,000,000) per format, a tenth of that for MTL:
 //! `SIGHTLINE_FUZZ_CASES=200000 cargo test --release --test fuzz_mesh_formats -- --ignored`.
 
-mod common;
+mod support;
 
 use proptest::prelude::*;
 use proptest::sample::{Index, select};
@@ -15,6 +15,8 @@ use proptest::test_runner::{Config, TestRunner};
 use sightline::scene::{Format, load_bytes};
 use std::cell::Cell;
 use std::time::Instant;
+use support::fixtures::{assert_corner_attributes, fixtures_dir};
+use support::rng::cases_from_env;
 
 const DEFAULT_CASES: u32 = 100_000;
 
@@ -28,10 +30,10 @@ fn seeds(format: Format) -> Vec<Vec<u8>> {
     let mut out = Vec::new();
     // The good fixtures three times: mutants of them get further than mutants of broken files.
     for dir in [
-        common::fixtures(),
-        common::fixtures(),
-        common::fixtures(),
-        common::fixtures().join("bad"),
+        fixtures_dir(),
+        fixtures_dir(),
+        fixtures_dir(),
+        fixtures_dir().join("bad"),
     ] {
         let mut paths: Vec<_> = std::fs::read_dir(&dir)
             .unwrap()
@@ -111,7 +113,10 @@ fn grid_seeds(format: Format) -> Vec<Vec<u8>> {
                 s += "endloop\nendfacet\n";
             }
             s += "endsolid grid\n";
-            vec![s.into_bytes(), common::binary_stl("grid", &tris)]
+            vec![
+                s.into_bytes(),
+                support::generated::binary_stl("grid", &tris),
+            ]
         }
         Format::Ply => {
             let head = |fmt: &str| {
@@ -517,18 +522,7 @@ fn fuzz(format: Format, cases: u32) {
         bytes_seen.set(bytes_seen.get() + bytes.len() as u64);
         if let Ok(s) = load_bytes(&bytes, format, "fuzz", None) {
             ok.set(ok.get() + 1);
-            // Per-corner attributes are absent or parallel to the corners.
-            for len in [s.corner_uvs.len(), s.corner_normals.len()] {
-                prop_assert!(len == 0 || len == s.corners.len());
-            }
-            prop_assert!(
-                s.corner_uvs
-                    .iter()
-                    .flatten()
-                    .flatten()
-                    .all(|x| x.is_finite())
-            );
-            prop_assert!(s.corner_normals.iter().flatten().all(|n| n.is_finite()));
+            assert_corner_attributes(&s);
         }
         Ok(())
     });
@@ -545,10 +539,7 @@ fn fuzz(format: Format, cases: u32) {
 }
 
 fn long_cases() -> u32 {
-    std::env::var("SIGHTLINE_FUZZ_CASES")
-        .ok()
-        .and_then(|s| s.replace('_', "").parse().ok())
-        .unwrap_or(1_000_000)
+    cases_from_env("SIGHTLINE_FUZZ_CASES", 1_000_000)
 }
 
 #[test]
@@ -595,7 +586,7 @@ fn fuzz_mtl(cases: u32) {
         "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n",
     )
     .unwrap();
-    let seed = std::fs::read(common::fixtures().join("cube.mtl")).unwrap();
+    let seed = std::fs::read(fixtures_dir().join("cube.mtl")).unwrap();
     let dict: Vec<&'static [u8]> = vec![
         b"newmtl",
         b"red",

@@ -9,12 +9,16 @@
 //! Each run prints how many cases loaded and how many were refused; `SIGHTLINE_FUZZ_VERBOSE=1`
 //! prints every refusal, to see which layer the cases reach.
 
+mod support;
+
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 use sightline::Location;
 use sightline::scene::{Format, load_bytes};
 use std::cell::Cell;
 use std::time::Instant;
+use support::fixtures::{assert_corner_attributes, fixtures_dir};
+use support::rng::cases_from_env;
 
 const FIXTURES: &[&str] = &[
     include_str!("../fixtures/seed_two_triangles.x3d"),
@@ -32,23 +36,11 @@ thread_local! {
 /// Loads and checks the outcome: a scene keeps its invariants, an error names an element.
 fn check(bytes: &[u8]) {
     // ImageTexture urls are resolved against the fixtures (only checked for existence).
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures");
-    match load_bytes(bytes, Format::X3d, "fuzz.x3d", Some(&dir)) {
+    match load_bytes(bytes, Format::X3d, "fuzz.x3d", Some(&fixtures_dir())) {
         Ok(s) => {
             OUTCOMES.set((OUTCOMES.get().0 + 1, OUTCOMES.get().1));
             assert!(!s.faces.is_empty());
-            // Per-corner attributes are absent or parallel to the corners, and finite.
-            for len in [s.corner_uvs.len(), s.corner_normals.len()] {
-                assert!(len == 0 || len == s.corners.len());
-            }
-            assert!(
-                s.corner_uvs
-                    .iter()
-                    .flatten()
-                    .flatten()
-                    .all(|x| x.is_finite())
-            );
-            assert!(s.corner_normals.iter().flatten().all(|n| n.is_finite()));
+            assert_corner_attributes(&s);
             assert!(s.material_textures.len() <= s.materials.len());
             assert!(s.positions.iter().all(|p| p.is_finite()));
             for f in &s.faces {
@@ -361,20 +353,19 @@ fn random_scene() -> impl Strategy<Value = Vec<u8>> {
             let mut children = String::new();
             // Large counts stand for "one per point", so that many cases load.
             let fit = |c: usize| if c >= 8 { (n as usize).max(1) } else { c };
-            if let Some((count, own)) = &tex {
-                let count = &fit(*count);
-                let pts: Vec<String> = (0..2 * count).map(|k| (k % 3).to_string()).collect();
-                children += &format!("<TextureCoordinate point='{}'/>", pts.join(" "));
-                if let Some(i) = own_index(own, *count) {
-                    flags += &format!(" texCoordIndex='{i}'");
-                }
-            }
-            if let Some((count, own)) = &nor {
-                let count = &fit(*count);
-                let v: Vec<String> = (0..3 * count).map(|k| (k % 4).to_string()).collect();
-                children += &format!("<Normal vector='{}'/>", v.join(" "));
-                if let Some(i) = own_index(own, *count) {
-                    flags += &format!(" normalIndex='{i}'");
+            // (element, its field, numbers per value, values cycle below, the index attribute)
+            for (attribute, element, field, width, cycle, index_name) in [
+                (&tex, "TextureCoordinate", "point", 2, 3, "texCoordIndex"),
+                (&nor, "Normal", "vector", 3, 4, "normalIndex"),
+            ] {
+                if let Some((count, own)) = attribute {
+                    let count = fit(*count);
+                    let v: Vec<String> =
+                        (0..width * count).map(|k| (k % cycle).to_string()).collect();
+                    children += &format!("<{element} {field}='{}'/>", v.join(" "));
+                    if let Some(i) = own_index(own, count) {
+                        flags += &format!(" {index_name}='{i}'");
+                    }
                 }
             }
             let image = if texture { "<ImageTexture url='\"checker16.png\"'/>" } else { "" };
@@ -468,10 +459,7 @@ fn run<S: Strategy<Value = Vec<u8>>>(name: &str, cases: u32, strategy: S) {
 }
 
 fn long_cases() -> u32 {
-    std::env::var("SIGHTLINE_FUZZ_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(100_000)
+    cases_from_env("SIGHTLINE_FUZZ_CASES", 100_000)
 }
 
 #[test]

@@ -1,15 +1,12 @@
 //! Every good fixture loads with the expected counts, materials and ids, and the cube reads the
 //! same in every format.
 
-mod common;
+mod support;
 
 use glam::DVec3;
 use sightline::scene::{Format, Scene, load, load_bytes};
-
-fn fixture(name: &str) -> Scene {
-    let path = common::fixtures().join(name);
-    load(&path, None).unwrap_or_else(|e| panic!("{e}"))
-}
+use support::fixtures::{fixture, fixtures_dir};
+use support::generated::{CUBE_QUADS, binary_stl, cube_binary_stl, cube_triangles};
 
 fn ids(s: &Scene) -> Vec<u32> {
     s.faces.iter().map(|f| f.id).collect()
@@ -85,7 +82,7 @@ fn cube_obj_with_materials() {
 
 #[test]
 fn obj_from_memory_does_not_follow_mtllib() {
-    let bytes = std::fs::read(common::fixtures().join("cube.obj")).unwrap();
+    let bytes = std::fs::read(fixtures_dir().join("cube.obj")).unwrap();
     let s = load_bytes(&bytes, Format::Obj, "mem", None).unwrap();
     assert!(s.materials.iter().all(|m| m.name == "default"));
     assert!(s.stats.warnings.iter().any(|w| w.contains("mtllib")));
@@ -132,7 +129,7 @@ fn cube_ply_all_encodings() {
         cube_checks(&s, 6);
         assert_eq!(ids(&s), (0..6).collect::<Vec<_>>(), "{name}");
         assert_eq!(s.meshes[0].name, name);
-        for (k, q) in common::CUBE_QUADS.iter().enumerate() {
+        for (k, q) in CUBE_QUADS.iter().enumerate() {
             let want: Vec<u32> = q.iter().map(|&i| i as u32).collect();
             assert_eq!(s.face_corners(&s.faces[k]), &want[..], "{name}");
         }
@@ -201,11 +198,7 @@ fn write_gz(dir: &std::path::Path, name: &str, bytes: &[u8]) -> std::path::PathB
 fn gzipped_fixtures_load_as_the_plain_ones() {
     // A .gz is decompressed as it is parsed, without knowing its decompressed size in advance.
     let dir = tempfile::tempdir().unwrap();
-    std::fs::copy(
-        common::fixtures().join("cube.mtl"),
-        dir.path().join("cube.mtl"),
-    )
-    .unwrap();
+    std::fs::copy(fixtures_dir().join("cube.mtl"), dir.path().join("cube.mtl")).unwrap();
     for name in [
         "cube.obj",
         "cube_ascii.stl",
@@ -217,7 +210,7 @@ fn gzipped_fixtures_load_as_the_plain_ones() {
         "indexed.x3d",
     ] {
         let plain = fixture(name);
-        let bytes = std::fs::read(common::fixtures().join(name)).unwrap();
+        let bytes = std::fs::read(fixtures_dir().join(name)).unwrap();
         let path = write_gz(dir.path(), &format!("{name}.gz"), &bytes);
         let gz = load(&path, None).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(gz.positions, plain.positions, "{name}");
@@ -236,7 +229,7 @@ fn gzipped_fixtures_load_as_the_plain_ones() {
 fn gzipped_binary_stl_with_a_solid_header_is_binary() {
     // Without the decompressed size, the rule is: `solid` and no NUL in the first KiB is ASCII.
     let dir = tempfile::tempdir().unwrap();
-    let bytes = common::binary_stl("solid cube, but binary", &common::cube_triangles());
+    let bytes = binary_stl("solid cube, but binary", &cube_triangles());
     let path = write_gz(dir.path(), "cube.stl.gz", &bytes);
     let s = load(&path, None).unwrap_or_else(|e| panic!("{e}"));
     cube_checks(&s, 12);
@@ -245,7 +238,7 @@ fn gzipped_binary_stl_with_a_solid_header_is_binary() {
 #[test]
 fn gzipped_truncated_binary_stl_fails_as_the_plain_one() {
     let dir = tempfile::tempdir().unwrap();
-    let mut bytes = common::cube_binary_stl();
+    let mut bytes = cube_binary_stl();
     bytes.truncate(84 + 50 * 5 + 20);
     std::fs::write(dir.path().join("t.stl"), &bytes).unwrap();
     let plain = load(&dir.path().join("t.stl"), None).unwrap_err();
@@ -258,7 +251,7 @@ fn gzipped_truncated_binary_stl_fails_as_the_plain_one() {
 #[test]
 fn broken_gzip_data_is_an_error_not_a_short_scene() {
     let dir = tempfile::tempdir().unwrap();
-    let bytes = std::fs::read(common::fixtures().join("cube.obj")).unwrap();
+    let bytes = std::fs::read(fixtures_dir().join("cube.obj")).unwrap();
     let path = write_gz(dir.path(), "c.obj.gz", &bytes);
     let gz = std::fs::read(&path).unwrap();
     // Cut in the middle: the faces that are there must not load as a smaller scene.
@@ -278,9 +271,9 @@ fn broken_gzip_data_is_an_error_not_a_short_scene() {
 #[test]
 fn progress_counts_the_bytes_of_the_file_on_disk() {
     let dir = tempfile::tempdir().unwrap();
-    let bytes = std::fs::read(common::fixtures().join("cube.obj")).unwrap();
+    let bytes = std::fs::read(fixtures_dir().join("cube.obj")).unwrap();
     let gz = write_gz(dir.path(), "c.obj.gz", &bytes);
-    for path in [common::fixtures().join("cube.obj"), gz] {
+    for path in [fixtures_dir().join("cube.obj"), gz] {
         let size = std::fs::metadata(&path).unwrap().len();
         let mut calls: Vec<(u64, u64)> = Vec::new();
         sightline::scene::load_with_progress(&path, None, &mut |read, total| {

@@ -1,7 +1,7 @@
 //! Every malformed fixture in `fixtures/bad` is refused with an error that names the file, the
 //! exact line or byte, and the problem.
 
-mod common;
+mod support;
 
 use sightline::Location;
 use sightline::scene::load;
@@ -9,7 +9,7 @@ use sightline::scene::load;
 /// Loads `fixtures/bad/{name}` and checks the error's file (`file`, default the fixture itself),
 /// location, and that its message contains every one of `needles`.
 fn check_in(name: &str, file: Option<&str>, location: Location, needles: &[&str]) {
-    let dir = common::fixtures().join("bad");
+    let dir = fixtures_dir().join("bad");
     let path = dir.join(name);
     let e = match load(&path, None) {
         Ok(s) => panic!("{name}: loaded {} faces, expected an error", s.faces.len()),
@@ -28,6 +28,7 @@ fn check(name: &str, location: Location, needles: &[&str]) {
 }
 
 use Location::{Byte, File, Line};
+use support::fixtures::fixtures_dir;
 
 #[test]
 fn obj_bad_number() {
@@ -324,7 +325,7 @@ fn ply_huge_count() {
 fn every_bad_fixture_has_a_test() {
     // OBJ, MTL, STL and PLY fixtures are tested here; X3D ones in malformed_x3d.rs.
     let src = include_str!("malformed_mesh_formats.rs");
-    for entry in std::fs::read_dir(common::fixtures().join("bad")).unwrap() {
+    for entry in std::fs::read_dir(fixtures_dir().join("bad")).unwrap() {
         let name = entry.unwrap().file_name().to_string_lossy().into_owned();
         if name.ends_with(".x3d") {
             continue;

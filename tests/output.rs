@@ -4,8 +4,8 @@
 mod support;
 
 use glam::DVec3;
-use sightline::camera::{Camera, CameraSpec, Projection};
-use sightline::draw::{DrawOptions, picture};
+use sightline::camera::Camera;
+use sightline::methods::{METHODS, method};
 use sightline::output::drawing::{DrawItem, Drawing};
 use sightline::output::json::write_json;
 use sightline::output::raster_drawing::{colors, face_ids};
@@ -14,9 +14,14 @@ use sightline::pipeline::{Fill, prepare, render_zbuffer};
 use sightline::project::CullMode;
 use sightline::scene::primitives::sphere_scene;
 use sightline::scene::{Material, Scene, SceneBuilder};
-use sightline::visibility::{CoverageMap, Painter};
-use std::path::Path;
-use support::{add_triangle, interior_mismatches, pixel_of};
+use sightline::visibility::BspTree;
+use support::camera::{front_ortho, ortho_down_z, scene_camera, spec_camera};
+use support::fixtures::fixture;
+use support::oracle::{assert_seed_transparent_colours, interior_mismatches};
+use support::scenes::{add_triangle, random_triangles};
+use support::strategy::{
+    CoverageMap, Painter, Strategy, drawing_of, exact_drawing, painter_drawing,
+};
 
 fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<[f64; 2]> {
     vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]
@@ -145,19 +150,11 @@ fn svg_options_and_no_background() {
 
 #[test]
 fn svg_and_json_are_deterministic() {
-    let scene = sightline::load(Path::new("fixtures/primitives.x3d"), None).unwrap();
+    let scene = fixture("primitives.x3d");
     let cam = spec_camera(&scene, (320, 240));
     let run = || {
         let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-        let mut r = picture(
-            &Painter,
-            &scene,
-            &screen,
-            &cam,
-            Fill::Shade,
-            DrawOptions::per_face(),
-            None,
-        );
+        let mut r = painter_drawing(&scene, &screen, &cam, Fill::Shade);
         r.stats.remove("sort_seconds"); // a timing, not part of the picture
         (
             write_svg(&r.drawing, &SvgOptions::default()),
@@ -277,18 +274,10 @@ fn region_numbers(text: &str) -> Vec<Vec<f64>> {
 
 #[test]
 fn json_coordinates_round_trip_exactly() {
-    let scene = sightline::load(Path::new("fixtures/primitives.x3d"), None).unwrap();
+    let scene = fixture("primitives.x3d");
     let cam = spec_camera(&scene, (333, 217));
     let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-    let r = picture(
-        &Painter,
-        &scene,
-        &screen,
-        &cam,
-        Fill::Shade,
-        DrawOptions::per_face(),
-        None,
-    );
+    let r = painter_drawing(&scene, &screen, &cam, Fill::Shade);
     let text = write_json(&r.drawing, &scene, &r.stats);
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let numbers = region_numbers(&text);
@@ -345,39 +334,28 @@ fn raster_square_with_hole_and_later_items_on_top() {
     assert_eq!(face_ids(&r)[6 * 12 + 2], Some(3));
 }
 
-fn spec_camera(scene: &Scene, size: (u32, u32)) -> Camera {
-    CameraSpec {
-        size: Some(size),
-        ..CameraSpec::default()
-    }
-    .resolve(scene.bounds().unwrap(), scene.viewpoint.as_ref())
-    .unwrap()
-}
-
 #[test]
 fn seed_transparent_scene_blends_exactly() {
     check_seed_transparent(&Painter);
 }
 
 #[test]
-fn seed_transparent_scene_blends_exactly_with_bsp() {
-    check_seed_transparent(&sightline::visibility::CoverageMap);
+fn seed_transparent_scene_blends_exactly_with_the_exact_strategies() {
+    check_seed_transparent(&CoverageMap);
+    check_seed_transparent(&BspTree);
 }
 
-fn check_seed_transparent(method: &dyn sightline::visibility::Strategy) {
-    let scene = sightline::load(Path::new("fixtures/seed_transparent.x3d"), None).unwrap();
-    let cam = CameraSpec::default()
-        .resolve(scene.bounds().unwrap(), scene.viewpoint.as_ref())
-        .unwrap();
+fn check_seed_transparent(strategy: &dyn Strategy) {
+    let scene = fixture("seed_transparent.x3d");
+    let cam = scene_camera(&scene);
     let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-    let mut r = picture(
-        method,
+    let mut r = drawing_of(
+        strategy,
         &scene,
         &screen,
         &cam,
         Fill::Shade,
-        DrawOptions::per_face(),
-        None,
+        sightline::draw::DrawOptions::per_face(),
     );
     r.drawing.background = Some([0.0; 3]);
     assert_eq!(r.drawing.items.len(), 2);
@@ -385,29 +363,7 @@ fn check_seed_transparent(method: &dyn sightline::visibility::Strategy) {
         r.drawing.items[1].opacity, 0.6,
         "green, in front, drawn last"
     );
-    let c = colors(&r.drawing);
-
-    let green = [0.0, 0.6, 0.0];
-    let green_over_blue = [0.0, 0.6, 0.4];
-    let blue = [0.0, 0.0, 1.0];
-    let black = [0.0; 3];
-    assert_eq!(c[pixel_of(&cam, DVec3::new(-2.0, -1.5, 0.0))], green);
-    assert_eq!(
-        c[pixel_of(&cam, DVec3::new(0.0, -1.5, 0.0))],
-        green_over_blue
-    );
-    assert_eq!(c[pixel_of(&cam, DVec3::new(2.0, -1.5, -1.0))], blue);
-    assert_eq!(c[0], black);
-    // No anti-aliasing: every pixel is exactly one of the four.
-    let mut counts = [0usize; 4];
-    for px in &c {
-        let k = [green, green_over_blue, blue, black]
-            .iter()
-            .position(|q| q == px)
-            .unwrap_or_else(|| panic!("unexpected colour {px:?}"));
-        counts[k] += 1;
-    }
-    assert!(counts.iter().all(|&n| n > 1000), "{counts:?}");
+    assert_seed_transparent_colours(&colors(&r.drawing), &cam);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -418,15 +374,7 @@ fn check_seed_transparent(method: &dyn sightline::visibility::Strategy) {
 fn painter_mismatches(scene: &Scene, cam: &Camera) -> (usize, usize) {
     let (prepared, zb) = render_zbuffer(scene, cam, CullMode::Auto, |_| {});
     let reference = zb.face_ids(&prepared.screen);
-    let r = picture(
-        &Painter,
-        scene,
-        &prepared.screen,
-        cam,
-        Fill::Id,
-        DrawOptions::per_face(),
-        None,
-    );
+    let r = painter_drawing(scene, &prepared.screen, cam, Fill::Id);
     assert_eq!(r.drawing.items.len(), prepared.screen.polys.len());
     assert_eq!(r.stats["faces_drawn"], prepared.screen.polys.len());
     let ids = face_ids(&r.drawing);
@@ -437,11 +385,8 @@ fn painter_mismatches(scene: &Scene, cam: &Camera) -> (usize, usize) {
 
 #[test]
 fn painter_matches_the_zbuffer_on_the_seed_scene() {
-    let scene = sightline::load(Path::new("fixtures/seed_two_triangles.x3d"), None).unwrap();
-    let cam = CameraSpec::default()
-        .resolve(scene.bounds().unwrap(), scene.viewpoint.as_ref())
-        .unwrap();
-    let (bad, interior) = painter_mismatches(&scene, &cam);
+    let scene = fixture("seed_two_triangles.x3d");
+    let (bad, interior) = painter_mismatches(&scene, &scene_camera(&scene));
     assert_eq!(bad, 0);
     assert!(interior > 500_000);
 }
@@ -451,19 +396,11 @@ fn painter_misorders_a_long_face_on_the_primitives() {
     // No cyclic overlap here, yet the farthest-corner sort is wrong: the box is 4 units deep, so
     // its side facing the sphere has its farthest corner behind every sphere face and is drawn
     // first, though it covers some of them. Every mismatch is that face hidden by the sphere.
-    let scene = sightline::load(Path::new("fixtures/primitives.x3d"), None).unwrap();
+    let scene = fixture("primitives.x3d");
     let cam = spec_camera(&scene, (640, 480));
     let (prepared, zb) = render_zbuffer(&scene, &cam, CullMode::Auto, |_| {});
     let reference = zb.face_ids(&prepared.screen);
-    let r = picture(
-        &Painter,
-        &scene,
-        &prepared.screen,
-        &cam,
-        Fill::Id,
-        DrawOptions::per_face(),
-        None,
-    );
+    let r = painter_drawing(&scene, &prepared.screen, &cam, Fill::Id);
     let ids = face_ids(&r.drawing);
     let mesh_of = |id: u32| {
         let f = scene.faces.iter().find(|f| f.id == id).unwrap();
@@ -510,21 +447,6 @@ fn painter_matches_the_zbuffer_on_a_100k_triangle_sphere_at_1024() {
     eprintln!("sphere: {:?}", t.elapsed());
 }
 
-fn ortho_top_camera(size: u32, height: f64) -> Camera {
-    let c = Camera {
-        eye: DVec3::new(0.0, 0.0, 10.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: Projection::Orthographic { height },
-        near: 1.0,
-        far: 20.0,
-        width: size,
-        height: size,
-    };
-    c.validate().unwrap();
-    c
-}
-
 #[test]
 fn painter_fails_on_cyclic_overlap() {
     // Three bars along the sides of a triangle, each rising from its start to its end: at every
@@ -548,7 +470,7 @@ fn painter_fails_on_cyclic_overlap() {
         b.add_face(&v, m);
     }
     let scene = b.finish().unwrap();
-    let cam = ortho_top_camera(160, 3.5);
+    let cam = ortho_down_z(10.0, 3.5, (160, 160));
     let (bad, interior) = painter_mismatches(&scene, &cam);
     assert!(
         bad > 0,
@@ -569,14 +491,13 @@ fn painter_fails_on_interpenetrating_triangles() {
         [p(-0.9, -1.0, -0.5), p(1.1, -1.0, -0.5), p(0.1, 1.0, 0.5)],
     );
     let scene = b.finish().unwrap();
-    let cam = ortho_top_camera(128, 2.5);
+    let cam = ortho_down_z(10.0, 2.5, (128, 128));
     let (bad, interior) = painter_mismatches(&scene, &cam);
     assert!(bad > 100, "{bad} of {interior}");
 }
 
 #[test]
 fn the_method_list_has_the_painter_marked_approximate() {
-    use sightline::methods::{METHODS, method};
     assert!(METHODS.iter().any(|m| m.name == "painter" && !m.exact));
     assert!(method("painter").is_some());
     assert!(method("nope").is_none());
@@ -614,39 +535,21 @@ fn coplanar_faces_of_one_paint_are_drawn_as_one_region() {
         .map(|(x, y, z)| b.add_vertex(DVec3::new(x, y, z)));
     b.add_face(&t, m);
     let scene = b.finish().unwrap();
-    let cam = Camera {
-        eye: DVec3::new(0.0, 0.0, 5.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: Projection::Orthographic { height: 3.0 },
-        near: 1.0,
-        far: 10.0,
-        width: 160,
-        height: 100,
-    };
+    let cam = front_ortho(3.0, 160, 100);
     let screen = prepare(&scene, &cam, CullMode::Off).screen;
-    let merged = picture(
+    let merged = drawing_of(
         &CoverageMap,
         &scene,
         &screen,
         &cam,
         Fill::Shade,
-        DrawOptions {
+        sightline::draw::DrawOptions {
             merge_surfaces: true,
             seams: false,
             background: None,
         },
-        None,
     );
-    let apart = picture(
-        &CoverageMap,
-        &scene,
-        &screen,
-        &cam,
-        Fill::Shade,
-        DrawOptions::per_face(),
-        None,
-    );
+    let apart = exact_drawing(&scene, &screen, &cam, Fill::Shade);
     let svg = write_svg(&merged.drawing, &SvgOptions::default());
     let doc = roxmltree::Document::parse(&svg).unwrap();
     let faces: Vec<Option<&str>> = svg_paths(&doc)
@@ -687,7 +590,7 @@ fn translucent_drawings_blend_as_the_abuffer_does() {
     use sightline::paint::to_u8;
     use sightline::raster::abuffer;
     for seed in 1..=4 {
-        let mut scene = support::random_triangles(40, seed);
+        let mut scene = random_triangles(40, seed);
         let mut glass = scene.materials[0].clone();
         glass.transparency = 0.5;
         glass.diffuse = [0.2, 0.5, 0.9];
@@ -698,16 +601,7 @@ fn translucent_drawings_blend_as_the_abuffer_does() {
         }
         let cam = spec_camera(&scene, (160, 120));
         let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-        let mut drawing = picture(
-            &CoverageMap,
-            &scene,
-            &screen,
-            &cam,
-            Fill::Shade,
-            DrawOptions::per_face(),
-            None,
-        )
-        .drawing;
+        let mut drawing = exact_drawing(&scene, &screen, &cam, Fill::Shade).drawing;
         assert!(drawing.items.iter().any(|i| i.opacity < 1.0));
         drawing.background = Some([1.0; 3]);
         let ours = colors(&drawing);

@@ -2,33 +2,46 @@
 //! mode, a symlink is followed (the link stays), a FIFO is written in place; new files get
 //! `0666 & !umask`. Everything happens in a temporary directory.
 
+mod support;
+
 use sightline::output::{write_atomic, write_with};
 use std::fs;
 use std::io::Read;
 use std::os::unix::fs::{FileTypeExt, MetadataExt, PermissionsExt, symlink};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::mpsc;
 use std::time::Duration;
+use support::cli::{run_ok, sightline};
 
 const BIN: &str = env!("CARGO_BIN_EXE_sightline");
 
-/// Renders the cube as a small PNG into `out`.
-fn render_to(out: &Path) -> Output {
-    Command::new(BIN)
-        .args(["render", "fixtures/cube.obj", "--size", "24x16", "-o"])
-        .arg(out)
-        .output()
-        .expect("binary runs")
+/// The render the tests write: the cube as a 24x16 PNG, into `out`.
+fn render_args(out: &Path) -> [&str; 6] {
+    let out = out.to_str().unwrap();
+    ["render", "fixtures/cube.obj", "--size", "24x16", "-o", out]
 }
 
-fn assert_ok(o: &Output) {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+/// Renders into `out`, which must succeed, and checks that `file` then holds the PNG.
+fn render_into(out: &Path, file: &Path) {
+    run_ok(&render_args(out));
+    assert!(
+        is_png(&fs::read(file).unwrap()),
+        "{} holds no PNG",
+        file.display()
+    );
 }
 
 fn is_png(bytes: &[u8]) -> bool {
     image::load_from_memory_with_format(bytes, image::ImageFormat::Png)
         .is_ok_and(|img| (img.width(), img.height()) == (24, 16))
+}
+
+/// `dir/name` holding "old".
+fn old_file(dir: &Path, name: &str) -> PathBuf {
+    let path = dir.join(name);
+    fs::write(&path, "old").unwrap();
+    path
 }
 
 fn names(dir: &Path) -> Vec<String> {
@@ -40,6 +53,18 @@ fn names(dir: &Path) -> Vec<String> {
     v
 }
 
+/// `dir/link.png`, a relative link to `target` (which need not exist).
+fn link_to(dir: &Path, target: &str) -> PathBuf {
+    let link = dir.join("link.png");
+    symlink(target, &link).unwrap();
+    link
+}
+
+/// Is `path` a symbolic link (not followed)?
+fn is_link(path: impl AsRef<Path>) -> bool {
+    fs::symlink_metadata(path).unwrap().file_type().is_symlink()
+}
+
 fn mode(path: &Path) -> u32 {
     fs::metadata(path).unwrap().mode() & 0o7777
 }
@@ -47,19 +72,11 @@ fn mode(path: &Path) -> u32 {
 #[test]
 fn a_symlink_stays_a_link_and_its_target_is_replaced() {
     let dir = tempfile::tempdir().unwrap();
-    let target = dir.path().join("target.png");
-    fs::write(&target, "old").unwrap();
-    let link = dir.path().join("link.png");
-    symlink("target.png", &link).unwrap();
-    assert_ok(&render_to(&link));
-    assert!(
-        fs::symlink_metadata(&link)
-            .unwrap()
-            .file_type()
-            .is_symlink()
-    );
+    let target = old_file(dir.path(), "target.png");
+    let link = link_to(dir.path(), "target.png");
+    render_into(&link, &target);
+    assert!(is_link(&link));
     assert_eq!(fs::read_link(&link).unwrap(), Path::new("target.png"));
-    assert!(is_png(&fs::read(&target).unwrap()));
     assert_eq!(names(dir.path()), ["link.png", "target.png"]);
 }
 
@@ -75,18 +92,8 @@ fn a_chain_of_relative_links_is_resolved_from_each_links_directory() {
     symlink("../real/out.png", d.join("sub/mid.png")).unwrap();
     write_atomic(&d.join("top.png"), b"new bytes").unwrap();
     assert_eq!(fs::read(d.join("real/out.png")).unwrap(), b"new bytes");
-    assert!(
-        fs::symlink_metadata(d.join("top.png"))
-            .unwrap()
-            .file_type()
-            .is_symlink()
-    );
-    assert!(
-        fs::symlink_metadata(d.join("sub/mid.png"))
-            .unwrap()
-            .file_type()
-            .is_symlink()
-    );
+    assert!(is_link(d.join("top.png")));
+    assert!(is_link(d.join("sub/mid.png")));
     assert_eq!(names(&d.join("sub")), ["mid.png"]);
     assert_eq!(names(&d.join("real")), ["out.png"]);
 }
@@ -94,16 +101,9 @@ fn a_chain_of_relative_links_is_resolved_from_each_links_directory() {
 #[test]
 fn a_dangling_link_creates_its_target_and_stays_a_link() {
     let dir = tempfile::tempdir().unwrap();
-    let link = dir.path().join("link.png");
-    symlink("made.png", &link).unwrap();
-    assert_ok(&render_to(&link));
-    assert!(
-        fs::symlink_metadata(&link)
-            .unwrap()
-            .file_type()
-            .is_symlink()
-    );
-    assert!(is_png(&fs::read(dir.path().join("made.png")).unwrap()));
+    let link = link_to(dir.path(), "made.png");
+    render_into(&link, &dir.path().join("made.png"));
+    assert!(is_link(&link));
 }
 
 #[test]
@@ -123,7 +123,7 @@ fn a_fifo_is_written_in_place_for_its_reader() {
         let r = fs::File::open(&reader_path).and_then(|mut f| f.read_to_end(&mut bytes));
         tx.send(r.map(|_| bytes)).unwrap();
     });
-    assert_ok(&render_to(&fifo));
+    run_ok(&render_args(&fifo));
     // Renamed over, the FIFO would never see a writer: its reader would wait forever.
     let got = rx
         .recv_timeout(Duration::from_secs(20))
@@ -138,11 +138,9 @@ fn a_fifo_is_written_in_place_for_its_reader() {
 fn a_replaced_file_keeps_its_mode() {
     let dir = tempfile::tempdir().unwrap();
     for m in [0o664, 0o640, 0o600, 0o444] {
-        let out = dir.path().join(format!("out{m:o}.png"));
-        fs::write(&out, "old").unwrap();
+        let out = old_file(dir.path(), &format!("out{m:o}.png"));
         fs::set_permissions(&out, fs::Permissions::from_mode(m)).unwrap();
-        assert_ok(&render_to(&out));
-        assert!(is_png(&fs::read(&out).unwrap()));
+        render_into(&out, &out);
         assert_eq!(mode(&out), m, "mode {m:o} became {:o}", mode(&out));
     }
 }
@@ -150,20 +148,17 @@ fn a_replaced_file_keeps_its_mode() {
 #[test]
 fn a_replaced_file_keeps_its_owner_and_group_when_the_writer_may_set_them() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("owned.png");
-    fs::write(&out, "old").unwrap();
+    let out = old_file(dir.path(), "owned.png");
     let (uid, gid) = (4321, 4322);
     let Ok(()) = std::os::unix::fs::chown(&out, Some(uid), Some(gid)) else {
         // Not root: nobody else's file can be made here, and ours stays ours.
         eprintln!("not root: owner kept trivially; checking only the replacement");
-        assert_ok(&render_to(&out));
-        assert!(is_png(&fs::read(&out).unwrap()));
+        render_into(&out, &out);
         return;
     };
-    assert_ok(&render_to(&out));
+    render_into(&out, &out);
     let m = fs::metadata(&out).unwrap();
     assert_eq!((m.uid(), m.gid()), (uid, gid));
-    assert!(is_png(&fs::read(&out).unwrap()));
 }
 
 /// Renders into `out` under `umask` (set in a shell, so only the child has it).
@@ -184,7 +179,8 @@ fn a_new_file_gets_0666_minus_the_umask() {
     let dir = tempfile::tempdir().unwrap();
     for (umask, want) in [("022", 0o644), ("002", 0o664), ("077", 0o600)] {
         let out = dir.path().join(format!("new{umask}.png"));
-        assert_ok(&render_under_umask(umask, &out));
+        let o = render_under_umask(umask, &out);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         assert_eq!(mode(&out), want, "umask {umask}: mode {:o}", mode(&out));
     }
 }
@@ -192,10 +188,8 @@ fn a_new_file_gets_0666_minus_the_umask() {
 #[test]
 fn a_failed_write_leaves_the_old_file_and_no_temporary() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("keep.png");
-    fs::write(&out, "old").unwrap();
-    let link = dir.path().join("link.png");
-    symlink("keep.png", &link).unwrap();
+    let out = old_file(dir.path(), "keep.png");
+    let link = link_to(dir.path(), "keep.png");
     for path in [&out, &link] {
         let r = write_with(path, |w| {
             w.write_all(&[7; 100_000])?;
@@ -212,7 +206,7 @@ fn a_directory_is_an_error_and_stays_a_directory() {
     let dir = tempfile::tempdir().unwrap();
     let sub = dir.path().join("out.png");
     fs::create_dir(&sub).unwrap();
-    let o = render_to(&sub);
+    let o = sightline(&render_args(&sub));
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("out.png"));
     assert!(fs::metadata(&sub).unwrap().is_dir());
@@ -224,8 +218,7 @@ fn a_directory_is_an_error_and_stays_a_directory() {
 #[test]
 fn an_interrupted_render_leaves_no_temporary_file() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("big.png");
-    fs::write(&out, b"old").unwrap();
+    let out = old_file(dir.path(), "big.png");
     let mut child = Command::new(BIN)
         .args([
             "render",

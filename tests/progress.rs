@@ -2,31 +2,35 @@
 //! stage's reports are labelled, monotone, few, and end at their total; reporting changes no
 //! result.
 
-use sightline::camera::{Camera, CameraSpec, NamedView};
-use sightline::draw::{DrawOptions, picture};
+mod support;
+
+use sightline::camera::{Camera, NamedView};
 use sightline::pipeline::{Fill, prepare};
-use sightline::progress::Ticker;
+use sightline::progress::{Report, Ticker};
 use sightline::project::{CullMode, ScreenScene};
 use sightline::scene::Scene;
 use sightline::scene::primitives::{random_triangle_soup, sphere_scene};
-use sightline::visibility::CoverageMap;
-use sightline::visibility::bsp::Bsp;
-use sightline::visibility::coverage_map::{visible_set, visible_set_with_progress};
+use sightline::visibility::coverage_map::visible_set_with_progress;
 use std::cell::RefCell;
+use support::camera::named_view;
+use support::strategy::{Bsp, CoverageMap, coverage_map};
 
 type Call = (&'static str, u64, u64);
 
 fn iso(scene: &Scene) -> Camera {
-    let spec = CameraSpec {
-        view: Some(NamedView::Iso),
-        size: Some((256, 256)),
-        ..Default::default()
-    };
-    spec.resolve(scene.bounds().unwrap(), None).unwrap()
+    named_view(scene, NamedView::Iso, (256, 256))
 }
 
 fn screen_of(scene: &Scene) -> ScreenScene {
     prepare(scene, &iso(scene), CullMode::Auto).screen
+}
+
+/// Runs `run` with a progress report that records its calls; returns its result and the calls.
+fn recorded<T>(run: impl FnOnce(Report) -> T) -> (T, Vec<Call>) {
+    let calls = RefCell::new(Vec::new());
+    let report = |s: &'static str, d: u64, t: u64| calls.borrow_mut().push((s, d, t));
+    let out = run(&report);
+    (out, calls.into_inner())
 }
 
 /// Checks one stage's calls and returns its final total. A stage whose total grows may report
@@ -51,13 +55,12 @@ fn check_stage(calls: &[Call], stage: &str) -> u64 {
 fn the_visible_set_reports_pieces_inserted_up_to_the_total() {
     let scene = random_triangle_soup(400, 11);
     let screen = screen_of(&scene);
-    let calls = RefCell::new(Vec::new());
-    let report = |s: &'static str, d: u64, t: u64| calls.borrow_mut().push((s, d, t));
-    let (visible, stats) = visible_set_with_progress(&screen, Some(&report));
-    let total = check_stage(&calls.borrow(), "visible set");
+    let ((visible, stats), calls) =
+        recorded(|report| visible_set_with_progress(&screen, Some(report)));
+    let total = check_stage(&calls, "visible set");
     assert_eq!(total, stats.inserted as u64);
     assert!(total >= 400, "{total}");
-    let (plain, plain_stats) = visible_set(&screen);
+    let (plain, plain_stats) = coverage_map(&screen);
     assert_eq!(plain_stats, stats);
     assert_eq!(plain.pieces.len(), visible.pieces.len());
 }
@@ -66,10 +69,7 @@ fn the_visible_set_reports_pieces_inserted_up_to_the_total() {
 fn the_painter_order_reports_fragments_placed_as_the_bsp_grows() {
     let scene = random_triangle_soup(300, 5);
     let screen = screen_of(&scene);
-    let calls = RefCell::new(Vec::new());
-    let report = |s: &'static str, d: u64, t: u64| calls.borrow_mut().push((s, d, t));
-    let bsp = Bsp::build_with_progress(&screen, Some(&report));
-    let calls = calls.into_inner();
+    let (bsp, calls) = recorded(|report| Bsp::build_with_progress(&screen, Some(report)));
     let total = check_stage(&calls, "painter order");
     assert_eq!(total, bsp.stats.fragments as u64);
     // The soup's triangles split one another: the total grew from the pieces to the fragments.
@@ -94,21 +94,18 @@ fn the_bsp_method_reports_the_stages_it_runs_and_draws_the_same() {
     ] {
         let cam = iso(&scene);
         let screen = prepare(&scene, &cam, CullMode::Auto).screen;
-        let calls = RefCell::new(Vec::new());
-        let report = |s: &'static str, d: u64, t: u64| calls.borrow_mut().push((s, d, t));
-        let run = |report| {
-            picture(
+        let run = |report: Option<sightline::progress::Report>| {
+            sightline::draw::picture(
                 &CoverageMap,
                 &scene,
                 &screen,
                 &cam,
                 Fill::Shade,
-                DrawOptions::picture(),
+                sightline::draw::DrawOptions::picture(),
                 report,
             )
         };
-        let with = run(Some(&report));
-        let calls = calls.borrow();
+        let (with, calls) = recorded(|report| run(Some(report)));
         let mut seen: Vec<&str> = calls.iter().map(|c| c.0).collect();
         seen.dedup();
         assert_eq!(seen, stages, "each stage once, in order");

@@ -12,11 +12,11 @@ use sightline::pipeline::render_zbuffer;
 use sightline::project::CullMode;
 use sightline::scene::Scene;
 use std::collections::BTreeMap;
-use std::path::Path;
-use support::pixel_of;
+use support::fixtures::fixture;
+use support::oracle::pixel_of;
 
 fn seed_scene() -> Scene {
-    sightline::load(Path::new("fixtures/seed_two_triangles.x3d"), None).expect("seed fixture loads")
+    fixture("seed_two_triangles.x3d")
 }
 
 fn seed_camera(scene: &Scene, near: f64, far: f64) -> Camera {

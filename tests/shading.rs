@@ -1,7 +1,10 @@
 //! Shading, perspective-correct interpolation and textures: the worked numbers of seeds 002 and
 //! 004, and renders whose pixels are predicted by hand.
 
+mod support;
+
 use glam::DVec3;
+use sightline::Scene;
 use sightline::camera::{Camera, Projection};
 use sightline::paint::lighting::{FILL, KEY, Light, Lighting};
 use sightline::paint::{flat_color, to_u8};
@@ -14,18 +17,9 @@ use sightline::raster::lighting::{Shading, Textures, shade_zbuffer, vertex_norma
 use sightline::raster::texture::{Mipmap, level_of_detail};
 use sightline::scene::CameraLights;
 use sightline::scene::primitives::sphere_scene;
-use sightline::{Scene, load};
-use std::path::Path;
-
-fn fixture(name: &str) -> Scene {
-    load(
-        &Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("fixtures")
-            .join(name),
-        None,
-    )
-    .unwrap()
-}
+use support::camera::look_at;
+use support::fixtures::{fixture, fixtures_dir};
+use support::render::flat_headlight;
 
 fn round3(x: f64) -> f64 {
     (x * 1000.0).round() / 1000.0
@@ -53,30 +47,15 @@ fn seed_002_screen_weights_depth_and_corrected_colour() {
     );
 }
 
-fn ortho_camera(size: u32) -> Camera {
-    Camera {
-        eye: DVec3::new(0.0, 0.0, 5.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: Projection::Orthographic { height: 2.0 },
-        near: 1.0,
-        far: 10.0,
-        width: size,
-        height: size,
-    }
-}
-
 fn persp_camera(eye: DVec3, size: u32) -> Camera {
-    Camera {
+    look_at(
         eye,
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: Projection::Perspective { fovy_deg: 40.0 },
-        near: 0.5,
-        far: 20.0,
-        width: size,
-        height: size,
-    }
+        DVec3::ZERO,
+        Projection::Perspective { fovy_deg: 40.0 },
+        0.5,
+        20.0,
+        (size, size),
+    )
 }
 
 /// The renderer's ray-plane weights are the seed's perspective-corrected screen weights.
@@ -327,7 +306,7 @@ fn checker16() -> Vec<[f64; 3]> {
 
 #[test]
 fn checker_fixture_is_the_generated_checkerboard() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/checker16.png");
+    let path = fixtures_dir().join("checker16.png");
     let want = checker16();
     if std::env::var_os("SIGHTLINE_WRITE_FIXTURES").is_some() {
         let img = image::RgbImage::from_fn(16, 16, |x, y| {
@@ -339,29 +318,12 @@ fn checker_fixture_is_the_generated_checkerboard() {
     assert_eq!(mip.levels[0].texels, want);
 }
 
+/// The textured quad of `fixtures/checker_quad.obj`, flat and matte under the seed's headlight.
 fn render_checker(size: u32) -> Vec<[f64; 3]> {
     let scene = fixture("checker_quad.obj");
     assert!(scene.corner_uvs.iter().all(|u| u.is_some()));
     assert_eq!(scene.corner_normals, vec![Some(DVec3::Z); 4]);
-    let cam = ortho_camera(size);
-    let textures = Textures::load(&scene);
-    assert!(textures.warnings.is_empty(), "{:?}", textures.warnings);
-    let (prep, zb) = render_zbuffer(&scene, &cam, CullMode::Auto, |_| {});
-    assert!(zb.poly.iter().all(|&p| p != sightline::raster::EMPTY));
-    shade_zbuffer(
-        &scene,
-        &prep.screen,
-        &zb,
-        &cam,
-        // Flat and matte, under the seed's headlight.
-        &Lighting {
-            specular: 0.0,
-            ..Lighting::headlight(&cam)
-        },
-        Shading::Flat,
-        &textures,
-        [0.0; 3],
-    )
+    flat_headlight(&scene, size)
 }
 
 /// One pixel per texel (L = 1, level 0): every pixel centre is a texel centre, so the image is

@@ -6,12 +6,9 @@
 //! drawings lose several per cent through their shared boundaries (the test checks that too,
 //! so that it can tell seams apart from their absence).
 
-#[path = "support/seam_measure.rs"]
-mod seam_measure;
+mod support;
 
-use seam_measure::{alpha_area, over_white, rasterize, rings_area, seam_defects};
-use sightline::camera::{Camera, CameraSpec, NamedView};
-use sightline::draw::{DrawOptions, picture};
+use sightline::camera::{Camera, NamedView};
 use sightline::output::drawing::Drawing;
 use sightline::output::svg::{SvgOptions, write_svg};
 use sightline::pipeline::{Fill, colorize_polys, prepare};
@@ -19,49 +16,24 @@ use sightline::project::CullMode;
 use sightline::raster::{EMPTY, zbuffer};
 use sightline::scene::Scene;
 use sightline::scene::primitives::{interlocked_tori, random_triangle_soup, sphere_scene};
-use sightline::visibility::CoverageMap;
+use support::camera::{named_view, scene_camera};
+use support::fixtures::fixture;
+use support::seam_measure::{alpha_area, over_white, rasterize, rings_area, seam_defects};
+use support::strategy::{exact_drawing, exact_picture};
 
-fn camera(scene: &Scene, view: NamedView, size: (u32, u32)) -> Camera {
-    CameraSpec {
-        view: Some(view),
-        size: Some(size),
-        ..CameraSpec::default()
-    }
-    .resolve(scene.bounds().unwrap(), None)
-    .unwrap()
-}
-
-/// The picture as `render --method coverage -o X.svg` draws it, and the exact opaque visible area
+/// The picture as `render --method bsp -o X.svg` draws it, and the exact opaque visible area
 /// (the per-face drawing, as the JSON holds it).
 fn picture_and_exact_area(scene: &Scene, camera: &Camera) -> (Drawing, f64) {
     let screen = prepare(scene, camera, CullMode::Auto).screen;
-    let merged = picture(
-        &CoverageMap,
-        scene,
-        &screen,
-        camera,
-        Fill::Shade,
-        DrawOptions::picture(),
-        None,
-    )
-    .drawing;
-    let per_face = picture(
-        &CoverageMap,
-        scene,
-        &screen,
-        camera,
-        Fill::Shade,
-        DrawOptions::per_face(),
-        None,
-    )
-    .drawing;
+    let picture = exact_picture(scene, &screen, camera, Fill::Shade).drawing;
+    let per_face = exact_drawing(scene, &screen, camera, Fill::Shade).drawing;
     let area = per_face
         .items
         .iter()
         .filter(|i| i.opacity >= 1.0)
         .map(|i| rings_area(&i.rings))
         .sum();
-    (merged, area)
+    (picture, area)
 }
 
 fn covered_alpha(d: &Drawing) -> f64 {
@@ -81,8 +53,10 @@ fn alpha_errors(scene: &Scene, camera: &Camera) -> (f64, f64) {
     (rel(covered_alpha(&picture)), rel(covered_alpha(&bare)))
 }
 
-fn check(name: &str, scene: &Scene, camera: &Camera) {
-    let (with, without) = alpha_errors(scene, camera);
+/// (a) for `scene` seen from `view` at `size`: within 0.1 % with the seams, short by more than
+/// 0.5 % without them.
+fn check(name: &str, scene: &Scene, view: NamedView, size: (u32, u32)) {
+    let (with, without) = alpha_errors(scene, &named_view(scene, view, size));
     eprintln!("{name}: alpha vs exact area {with:+.5} with seams, {without:+.5} without");
     assert!(
         with.abs() < 0.001,
@@ -99,38 +73,22 @@ fn check(name: &str, scene: &Scene, camera: &Camera) {
 #[test]
 fn a_closed_sphere_covers_its_exact_area_with_no_seams() {
     let scene = sphere_scene(3000);
-    check(
-        "sphere",
-        &scene,
-        &camera(&scene, NamedView::Iso, (1024, 1024)),
-    );
+    check("sphere", &scene, NamedView::Iso, (1024, 1024));
 }
 
 #[test]
 fn interlocked_tori_cover_their_exact_area_through_occlusion_boundaries() {
     // Occlusion boundaries: T-junctions where one torus passes in front of the other.
     let scene = interlocked_tori(40, 16);
-    check(
-        "tori",
-        &scene,
-        &camera(&scene, NamedView::Front, (1024, 768)),
-    );
-    check(
-        "tori iso",
-        &scene,
-        &camera(&scene, NamedView::Iso, (1024, 768)),
-    );
+    check("tori", &scene, NamedView::Front, (1024, 768));
+    check("tori iso", &scene, NamedView::Iso, (1024, 768));
 }
 
 #[test]
 fn an_interpenetrating_soup_covers_its_exact_area() {
     // Two-sided triangles cut by each other's planes: seams along intersection lines.
     let scene = random_triangle_soup(60, 5);
-    check(
-        "soup",
-        &scene,
-        &camera(&scene, NamedView::Iso, (1024, 1024)),
-    );
+    check("soup", &scene, NamedView::Iso, (1024, 1024));
 }
 
 #[test]
@@ -139,7 +97,7 @@ fn no_pixel_inside_the_silhouette_shows_the_background() {
     // from the range of the z-buffer colours around it shows something no face there has: the
     // background, through a seam. Blends of neighbouring faces (anti-aliased creases) are not.
     let scene = sphere_scene(3000);
-    let camera = camera(&scene, NamedView::Iso, (320, 320));
+    let camera = named_view(&scene, NamedView::Iso, (320, 320));
     let screen = prepare(&scene, &camera, CullMode::Auto).screen;
     let zb = zbuffer::render(&screen, |_| {});
     let reference = colorize_polys(&scene, &screen, &zb.poly, &camera, Fill::Shade, [255; 3]);
@@ -166,7 +124,7 @@ fn no_pixel_inside_the_silhouette_shows_the_background() {
 #[test]
 fn seams_are_clipped_to_the_opaque_outline_and_written_under_the_fills() {
     let scene = sphere_scene(500);
-    let camera = camera(&scene, NamedView::Iso, (200, 200));
+    let camera = named_view(&scene, NamedView::Iso, (200, 200));
     let (picture, _) = picture_and_exact_area(&scene, &camera);
     let svg = write_svg(&picture, &SvgOptions::default());
     let doc = roxmltree::Document::parse(&svg).unwrap();
@@ -208,11 +166,8 @@ fn translucent_faces_are_drawn_over_a_seamless_opaque_set() {
     // The seed's scene: blue opaque behind, green translucent in front. The opaque faces come
     // first (with their seams), then the translucent parts in front of them, one item per run
     // of fragments of one face.
-    let scene =
-        sightline::load(std::path::Path::new("fixtures/seed_transparent.x3d"), None).unwrap();
-    let camera = CameraSpec::default()
-        .resolve(scene.bounds().unwrap(), scene.viewpoint.as_ref())
-        .unwrap();
+    let scene = fixture("seed_transparent.x3d");
+    let camera = scene_camera(&scene);
     let (picture, _) = picture_and_exact_area(&scene, &camera);
     let first_translucent = picture
         .items

@@ -1,11 +1,12 @@
 //! Every text format (OBJ, MTL, ASCII PLY, ASCII STL, X3D) reads the same with a leading UTF-8
 //! byte-order mark and with CRLF line ends as without, and errors keep naming the right line.
 
-mod common;
+mod support;
 
 use sightline::error::{LoadError, Location};
 use sightline::scene::{Scene, load};
 use std::path::Path;
+use support::fixtures::fixtures_dir;
 
 const BOM: &str = "\u{feff}";
 
@@ -20,7 +21,7 @@ fn variants(text: &str) -> [(&'static str, String); 3] {
 }
 
 fn fixture_text(name: &str) -> String {
-    std::fs::read_to_string(common::fixtures().join(name)).unwrap()
+    std::fs::read_to_string(fixtures_dir().join(name)).unwrap()
 }
 
 /// Writes the files into `dir` and loads the first one.
@@ -117,7 +118,7 @@ fn ascii_ply_reads_the_same_with_bom_and_crlf() {
 #[test]
 fn binary_ply_header_may_start_with_a_bom() {
     let dir = tempfile::tempdir().unwrap();
-    let plain = std::fs::read(common::fixtures().join("cube_binary_le.ply")).unwrap();
+    let plain = std::fs::read(fixtures_dir().join("cube_binary_le.ply")).unwrap();
     let mut with_bom = BOM.as_bytes().to_vec();
     with_bom.extend_from_slice(&plain);
     std::fs::write(dir.path().join("a.ply"), &plain).unwrap();

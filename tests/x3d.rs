@@ -1,30 +1,23 @@
 //! X3D loading and generated primitives: world-space coordinates, transform composition,
 //! materials, viewpoints, warnings, and closed, outward primitive meshes.
 
+mod support;
+
 use glam::{DMat4, DQuat, DVec3};
 use sightline::scene::primitives::{self, Parts};
-use sightline::scene::{Format, SceneBuilder, load, load_bytes};
+use sightline::scene::{Format, SceneBuilder, load_bytes};
 use sightline::{Location, Material, Scene};
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI};
-use std::path::Path;
-
-fn fixture(name: &str) -> Scene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("fixtures")
-        .join(name);
-    load(&path, None).unwrap_or_else(|e| panic!("{e}"))
-}
+use support::fixtures::fixture;
 
 fn x3d(text: &str) -> Scene {
     load_bytes(text.as_bytes(), Format::X3d, "inline.x3d", None).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn face_points(s: &Scene, i: usize) -> Vec<DVec3> {
-    s.face_positions(&s.faces[i]).collect()
-}
-
-fn assert_points(got: &[DVec3], want: &[[f64; 3]], tol: f64) {
+/// Checks the corners of face `i` against `want`, each coordinate to within `tol`.
+fn assert_face(s: &Scene, i: usize, want: &[[f64; 3]], tol: f64) {
+    let got: Vec<DVec3> = s.face_positions(&s.faces[i]).collect();
     assert_eq!(got.len(), want.len(), "{got:?} vs {want:?}");
     for (g, w) in got.iter().zip(want) {
         assert!(
@@ -80,13 +73,10 @@ fn seed_two_triangles_in_world_space() {
     assert_eq!(s.meshes.len(), 2);
     assert!(s.stats.warnings.is_empty(), "{:?}", s.stats.warnings);
     // Red at z = 0 moved +1 in x; blue at z = -1 moved -1 in x.
-    assert_points(
-        &face_points(&s, 0),
-        &[[-1., -2., 0.], [3., -2., 0.], [1., 2., 0.]],
-        0.0,
-    );
-    assert_points(
-        &face_points(&s, 1),
+    assert_face(&s, 0, &[[-1., -2., 0.], [3., -2., 0.], [1., 2., 0.]], 0.0);
+    assert_face(
+        &s,
+        1,
         &[[-3., -2., -1.], [1., -2., -1.], [-1., 2., -1.]],
         0.0,
     );
@@ -113,19 +103,16 @@ fn seed_transparent_variant() {
     let s = fixture("seed_transparent.x3d");
     assert_eq!(s.faces.len(), 2);
     // Blue, opaque, drawn first: z = -1 moved +1 in x.
-    assert_points(
-        &face_points(&s, 0),
+    assert_face(
+        &s,
+        0,
         &[[-1., -2., -1.], [3., -2., -1.], [1., 2., -1.]],
         0.0,
     );
     assert_eq!(material_of(&s, 0).emissive, [0.0, 0.0, 1.0]);
     assert_eq!(material_of(&s, 0).transparency, 0.0);
     // Green, transparent, last: z = 0 moved -1 in x.
-    assert_points(
-        &face_points(&s, 1),
-        &[[-3., -2., 0.], [1., -2., 0.], [-1., 2., 0.]],
-        0.0,
-    );
+    assert_face(&s, 1, &[[-3., -2., 0.], [1., -2., 0.], [-1., 2., 0.]], 0.0);
     assert_eq!(material_of(&s, 1).emissive, [0.0, 1.0, 0.0]);
     assert_eq!(material_of(&s, 1).diffuse, [0.0; 3]);
     assert_eq!(material_of(&s, 1).transparency, 0.4);
@@ -148,8 +135,9 @@ fn nested_transforms_compose_in_x3d_order() {
          </Transform>
         </Transform>
         </Scene></X3D>"#);
-    assert_points(
-        &face_points(&s, 0),
+    assert_face(
+        &s,
+        0,
         &[[8., 2., 10.], [11., 0., 10.], [11., 0., 12.]],
         1e-12,
     );
@@ -162,11 +150,7 @@ fn scale_orientation_scales_along_the_rotated_axes() {
         <Transform scale="2 1 1" scaleOrientation="0 0 1 1.5707963267948966" translation="0 0 1">
           <Shape><TriangleSet><Coordinate point="1 1 0  0 0 0  1 0 0"/></TriangleSet></Shape>
         </Transform></Scene>"#);
-    assert_points(
-        &face_points(&s, 0),
-        &[[1., 2., 1.], [0., 0., 1.], [1., 0., 1.]],
-        1e-12,
-    );
+    assert_face(&s, 0, &[[1., 2., 1.], [0., 0., 1.], [1., 0., 1.]], 1e-12);
 }
 
 #[test]
@@ -203,7 +187,7 @@ fn transform_matches_the_matrix_formula() {
         .iter()
         .map(|p| m.transform_point3(DVec3::from_array(*p)).to_array())
         .collect();
-    assert_points(&face_points(&scene, 0), &want, 1e-12);
+    assert_face(&scene, 0, &want, 1e-12);
 }
 
 #[test]
@@ -539,31 +523,30 @@ fn def_use_edge_cases_do_not_crash() {
 
 #[test]
 fn runaway_def_use_expansion_is_refused() {
+    // `head` (which defines g0), then groups g1..=levels, each using the one before twice.
+    let doubling = |head: &str, levels: usize| {
+        let mut text = String::from(head);
+        for k in 1..=levels {
+            text.push_str(&format!(
+                r#"<Group DEF="g{k}"><Group USE="g{}"/><Group USE="g{}"/></Group>"#,
+                k - 1,
+                k - 1
+            ));
+        }
+        text + "</Scene>"
+    };
     // Each level uses the previous one twice: 2^40 boxes if expanded.
-    let mut text = String::from(r#"<Scene><Group DEF="g0"><Shape><Box/></Shape></Group>"#);
-    for k in 1..=40 {
-        text.push_str(&format!(
-            r#"<Group DEF="g{k}"><Group USE="g{}"/><Group USE="g{}"/></Group>"#,
-            k - 1,
-            k - 1
-        ));
-    }
-    text.push_str("</Scene>");
+    let text = doubling(
+        r#"<Scene><Group DEF="g0"><Shape><Box/></Shape></Group>"#,
+        40,
+    );
     let t = std::time::Instant::now();
     let e = load_bytes(text.as_bytes(), Format::X3d, "bomb.x3d", None).unwrap_err();
     assert!(e.message.contains("more than"), "{e}");
     assert!(t.elapsed().as_secs() < 30);
 
     // The same with empty groups: bounded by the visit count.
-    let mut text = String::from(r#"<Scene><Shape><Box/></Shape><Group DEF="g0"/>"#);
-    for k in 1..=60 {
-        text.push_str(&format!(
-            r#"<Group DEF="g{k}"><Group USE="g{}"/><Group USE="g{}"/></Group>"#,
-            k - 1,
-            k - 1
-        ));
-    }
-    text.push_str("</Scene>");
+    let text = doubling(r#"<Scene><Shape><Box/></Shape><Group DEF="g0"/>"#, 60);
     let e = load_bytes(text.as_bytes(), Format::X3d, "bomb.x3d", None).unwrap_err();
     assert!(e.message.contains("more than"), "{e}");
 }

@@ -1,22 +1,14 @@
 //! X3D texture coordinates, normals and ImageTexture: the indexing rules, the errors, and the
 //! textured quad rendered like its OBJ twin (tests/shading.rs).
 
+mod support;
+
 use glam::{DMat4, DVec3};
-use sightline::camera::{Camera, Projection};
-use sightline::pipeline::render_zbuffer;
-use sightline::project::CullMode;
-use sightline::raster::lighting::{Lighting, Shading, Textures, shade_zbuffer};
+use sightline::raster::lighting::Textures;
 use sightline::scene::{Format, load_bytes};
-use sightline::{Location, Scene, load};
-use std::path::{Path, PathBuf};
-
-fn fixtures() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures")
-}
-
-fn fixture(name: &str) -> Scene {
-    load(&fixtures().join(name), None).unwrap_or_else(|e| panic!("{e}"))
-}
+use sightline::{Location, Scene};
+use support::fixtures::{fixture, fixtures_dir};
+use support::render::flat_headlight;
 
 /// Loads X3D text as if it were a file in `fixtures/`.
 fn x3d(text: &str) -> Scene {
@@ -24,7 +16,7 @@ fn x3d(text: &str) -> Scene {
 }
 
 fn try_x3d(text: &str) -> Result<Scene, sightline::LoadError> {
-    load_bytes(text.as_bytes(), Format::X3d, "t.x3d", Some(&fixtures()))
+    load_bytes(text.as_bytes(), Format::X3d, "t.x3d", Some(&fixtures_dir()))
 }
 
 /// A Shape around `geometry` with a checker16 texture.
@@ -57,7 +49,7 @@ fn checker_fixture_has_uvs_normals_and_texture() {
     let m = s.faces[0].material;
     assert_eq!(
         s.texture_of(m),
-        Some(fixtures().join("checker16.png").as_path())
+        Some(fixtures_dir().join("checker16.png").as_path())
     );
     // X3D: the texture replaces the diffuse colour.
     assert_eq!(s.materials[m as usize].diffuse, [1.0; 3]);
@@ -65,34 +57,7 @@ fn checker_fixture_has_uvs_normals_and_texture() {
 
 /// The same camera and lighting as tests/shading.rs's OBJ checker quad.
 fn render(scene: &Scene, size: u32) -> Vec<[f64; 3]> {
-    let cam = Camera {
-        eye: DVec3::new(0.0, 0.0, 5.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: Projection::Orthographic { height: 2.0 },
-        near: 1.0,
-        far: 10.0,
-        width: size,
-        height: size,
-    };
-    let textures = Textures::load(scene);
-    assert!(textures.warnings.is_empty(), "{:?}", textures.warnings);
-    let (prep, zb) = render_zbuffer(scene, &cam, CullMode::Auto, |_| {});
-    assert!(zb.poly.iter().all(|&p| p != sightline::raster::EMPTY));
-    shade_zbuffer(
-        scene,
-        &prep.screen,
-        &zb,
-        &cam,
-        // Matte: flat shading takes a highlight when Ks > 0.
-        &Lighting {
-            specular: 0.0,
-            ..Lighting::headlight(&cam)
-        },
-        Shading::Flat,
-        &textures,
-        [0.0; 3],
-    )
+    flat_headlight(scene, size)
 }
 
 #[test]
@@ -194,7 +159,7 @@ fn texture_rules() {
     let m = s.faces[0].material;
     assert_eq!(
         s.texture_of(m),
-        Some(fixtures().join("nowhere.png").as_path())
+        Some(fixtures_dir().join("nowhere.png").as_path())
     );
     assert_eq!(s.materials[m as usize].diffuse, [0.5, 0.0, 0.0]);
     let t = Textures::load(&s);
@@ -227,7 +192,7 @@ fn texture_rules() {
     let s = x3d(&textured(tri).replace("\"checker16.png\"", r#""a b.png", "checker16.png""#));
     assert_eq!(
         s.texture_of(0),
-        Some(fixtures().join("checker16.png").as_path())
+        Some(fixtures_dir().join("checker16.png").as_path())
     );
     assert_eq!(s.materials[0].diffuse, [1.0; 3]);
 }

@@ -9,7 +9,12 @@ use sightline::camera::{Camera, NamedView, Projection};
 use sightline::pipeline::render_zbuffer;
 use sightline::project::CullMode;
 use sightline::scene::{Scene, SceneBuilder};
-use support::*;
+use support::camera::{fit, look_at, random_cameras, soup_camera};
+use support::oracle::{brute_force_ids, interior_mismatches};
+use support::scenes::{add_box, add_triangle, boxes_and_sphere, random_triangles};
+
+/// The image size of the cameras here.
+const SIZE: (u32, u32) = (160, 120);
 
 fn check_against_brute_force(scene: &Scene, camera: &Camera, cull: CullMode) -> (usize, usize) {
     let (prepared, zb) = render_zbuffer(scene, camera, cull, |_| {});
@@ -29,64 +34,24 @@ fn check_against_brute_force(scene: &Scene, camera: &Camera, cull: CullMode) -> 
     (interior.len(), covered)
 }
 
-fn camera(eye: DVec3, target: DVec3, projection: Projection, near: f64, far: f64) -> Camera {
-    let c = Camera {
-        eye,
-        target,
-        up: DVec3::Y,
-        projection,
-        near,
-        far,
-        width: 160,
-        height: 120,
-    };
-    c.validate().unwrap();
-    c
-}
-
-fn boxes_and_sphere() -> Scene {
-    let mut b = SceneBuilder::new("boxes");
-    add_box(
-        &mut b,
-        DVec3::new(-1.0, -1.0, -1.0),
-        DVec3::new(0.3, 0.5, 0.2),
-        "a",
-    );
-    add_box(
-        &mut b,
-        DVec3::new(0.1, -0.4, -0.3),
-        DVec3::new(1.2, 0.9, 0.9),
-        "b",
-    );
-    add_sphere(&mut b, DVec3::new(-0.2, 0.6, 0.6), 0.55, 24, 12);
-    b.finish().unwrap()
-}
-
 #[test]
 fn closed_interpenetrating_meshes_in_perspective() {
-    let scene = boxes_and_sphere();
-    let cam = Camera::fit(
-        NamedView::Iso,
-        scene.bounds().unwrap(),
-        false,
-        40.0,
-        160,
-        120,
-    );
+    let scene = boxes_and_sphere(24, 12);
+    let cam = fit(&scene, NamedView::Iso, false, SIZE.0, SIZE.1);
     let (interior, covered) = check_against_brute_force(&scene, &cam, CullMode::Auto);
     assert!(interior > 10_000 && covered > 1_500, "{interior} {covered}");
 }
 
 #[test]
 fn closed_meshes_in_orthographic_views() {
-    let scene = boxes_and_sphere();
+    let scene = boxes_and_sphere(24, 12);
     for view in [
         NamedView::Front,
         NamedView::Top,
         NamedView::Left,
         NamedView::Iso,
     ] {
-        let cam = Camera::fit(view, scene.bounds().unwrap(), true, 40.0, 160, 120);
+        let cam = fit(&scene, view, true, SIZE.0, SIZE.1);
         let (_, covered) = check_against_brute_force(&scene, &cam, CullMode::Auto);
         assert!(covered > 1_500, "{view:?}: {covered}");
     }
@@ -96,21 +61,15 @@ fn closed_meshes_in_orthographic_views() {
 fn random_interpenetrating_triangles() {
     for seed in 1..=4 {
         let scene = random_triangles(60, seed);
-        let persp = camera(
-            DVec3::new(0.4, 0.7, 4.0),
-            DVec3::ZERO,
-            Projection::Perspective { fovy_deg: 50.0 },
-            1.0,
-            8.0,
-        );
-        let ortho = camera(
+        let ortho = look_at(
             DVec3::new(3.0, 1.0, 2.0),
             DVec3::ZERO,
             Projection::Orthographic { height: 3.5 },
             0.5,
             8.0,
+            SIZE,
         );
-        for cam in [persp, ortho] {
+        for cam in [soup_camera(SIZE), ortho] {
             let (_, covered) = check_against_brute_force(&scene, &cam, CullMode::Auto);
             assert!(covered > 1_000, "seed {seed}: {covered}");
         }
@@ -149,12 +108,13 @@ fn faces_crossing_the_near_plane_are_clipped_not_dropped() {
         "box",
     );
     let scene = b.finish().unwrap();
-    let cam = camera(
+    let cam = look_at(
         DVec3::new(0.0, 0.2, 4.0),
         DVec3::new(0.0, -0.2, 0.0),
         Projection::Perspective { fovy_deg: 70.0 },
         0.3,
         40.0,
+        SIZE,
     );
     let (prepared, _) = render_zbuffer(&scene, &cam, CullMode::Auto, |_| {});
     assert!(
@@ -183,12 +143,13 @@ fn the_camera_inside_a_closed_box_sees_its_inside() {
         "inner",
     );
     let scene = b.finish().unwrap();
-    let cam = camera(
+    let cam = look_at(
         DVec3::new(0.2, 0.3, 1.0),
         DVec3::new(0.0, 0.0, -1.0),
         Projection::Perspective { fovy_deg: 90.0 },
         0.05,
         20.0,
+        SIZE,
     );
     let (prepared, zb) = render_zbuffer(&scene, &cam, CullMode::Auto, |_| {});
     assert_eq!(prepared.screen.stats.meshes_cut_by_near, 1);
@@ -212,13 +173,9 @@ mod random_scenes {
         fn zbuffer_matches_brute_force_at_interior_pixels(
             seed in any::<u64>(),
             n in 1usize..25,
-            eye in prop::array::uniform3(-4.0f64..4.0),
-            ortho in any::<bool>(),
-            fov in 20.0f64..100.0,
-            near in 0.05f64..1.0,
+            cam in random_cameras(0.05f64..1.0),
         ) {
             let scene = random_triangles(n, seed);
-            let cam = random_camera(eye, ortho, fov, near);
             prop_assume!(cam.is_some());
             let cam = cam.unwrap();
             check_against_brute_force(&scene, &cam, CullMode::Auto);

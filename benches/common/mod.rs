@@ -1,8 +1,42 @@
-//! What the benchmarks share: the meshes of `../shared/meshes` with their cameras.
+//! What the benchmarks share: the meshes of `../shared/meshes` with their cameras, the group
+//! that measures them, and the tests' cameras (`tests/support/camera.rs`).
 
-use sightline::camera::{CamFile, Camera};
+#[path = "../../tests/support/camera.rs"]
+pub mod camera;
+
+use criterion::measurement::WallTime;
+use criterion::{BenchmarkGroup, Criterion, Throughput};
+use sightline::camera::{CamFile, Camera, NamedView};
 use sightline::scene::Scene;
 use std::path::Path;
+use std::time::Duration;
+
+/// The iso view of `scene` at 1024x1024 (40-degree field of view), as the benchmarks see the
+/// generated scenes.
+pub fn iso_1024(scene: &Scene) -> Camera {
+    camera::fit(scene, NamedView::Iso, false, 1024, 1024)
+}
+
+/// The benchmark group "mesh": for every shared mesh (none when the directory is absent),
+/// `bench` adds its benchmarks, 10 samples over `seconds`, throughput in faces.
+pub fn mesh_group(
+    c: &mut Criterion,
+    seconds: u64,
+    mut bench: impl FnMut(&mut BenchmarkGroup<'_, WallTime>, String, Scene, Camera),
+) {
+    let meshes = shared_meshes();
+    if meshes.is_empty() {
+        return;
+    }
+    let mut g = c.benchmark_group("mesh");
+    g.sample_size(10)
+        .measurement_time(Duration::from_secs(seconds));
+    for (stem, scene, cam) in meshes {
+        g.throughput(Throughput::Elements(scene.faces.len() as u64));
+        bench(&mut g, stem, scene, cam);
+    }
+    g.finish();
+}
 
 /// Every mesh of `../shared/meshes` that has a camera in `cams/`, by name, loaded; empty (and
 /// said on stderr) when the directory is not present.

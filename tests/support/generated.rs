@@ -1,9 +1,6 @@
-//! The unit cube shared by the fixtures, and writers for the STL and PLY fixtures (binary ones
-//! cannot be written by hand; the text ones are generated too so that every format holds exactly
-//! the same cube).
-#![allow(dead_code)]
-
-use std::path::PathBuf;
+//! The generated fixtures: the unit cube they share, and writers for the STL and PLY fixtures
+//! (binary ones cannot be written by hand; the text ones are generated too so that every format
+//! holds exactly the same cube). `tests/fixture_gen.rs` keeps `fixtures/` equal to them.
 
 /// The unit cube [0,1]^3.
 pub const CUBE_VERTICES: [[f64; 3]; 8] = [
@@ -27,10 +24,6 @@ pub const CUBE_QUADS: [[usize; 4]; 6] = [
     [0, 4, 7, 3],
     [1, 2, 6, 5],
 ];
-
-pub fn fixtures() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fixtures")
-}
 
 /// The cube's triangles: each quad (a, b, c, d) as (a, b, c), (a, c, d).
 pub fn cube_triangles() -> Vec<[[f64; 3]; 3]> {

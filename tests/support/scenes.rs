@@ -1,83 +1,87 @@
-//! Scenes and cameras for the image-space renderer tests (A-buffer, scanline, Warnock): the
-//! fixtures, and random triangles built to hit the hard cases of a pixel-exact renderer.
-#![allow(dead_code)]
+//! Scenes generated in code: boxes, spheres and polygons each in a mesh of their own, random
+//! triangle soups, and random faces built to hit the hard cases of a pixel-exact renderer. A
+//! seed always makes the same scene.
 
-use glam::DVec3;
-use sightline::camera::{Camera, CameraSpec, NamedView, Projection};
-use sightline::scene::{Material, Scene, SceneBuilder};
-use std::path::{Path, PathBuf};
-// The test files that use these scenes include `support` too.
-use super::support::Rng;
+use super::camera::{LATTICE_H, LATTICE_W, lattice_point};
+use super::rng::Rng;
+use glam::{DMat4, DVec3};
+use sightline::scene::{Material, Scene, SceneBuilder, primitives};
 
-/// Every loadable fixture (`fixtures/`, not `fixtures/bad`), by path, in name order.
-pub fn fixture_paths() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures");
-    let mut out: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| {
-            p.is_file()
-                && matches!(
-                    p.extension().and_then(|e| e.to_str()),
-                    Some("obj" | "stl" | "ply" | "x3d")
-                )
-        })
-        .collect();
-    out.sort();
-    assert!(out.len() >= 15, "fixtures missing: {out:?}");
-    out
+/// Adds an axis-aligned box (outward, closed) in a mesh of its own.
+pub fn add_box(b: &mut SceneBuilder, lo: DVec3, hi: DVec3, name: &str) {
+    b.begin_mesh(name);
+    let m = b.default_material();
+    let at = DMat4::from_translation((lo + hi) * 0.5);
+    primitives::add_box(b, &at, hi - lo, m);
 }
 
-/// Cameras for a scene: its own (or the default) view, and fitted named views, perspective and
-/// orthographic.
-pub fn cameras(scene: &Scene, w: u32, h: u32) -> Vec<Camera> {
-    let bounds = scene.bounds().unwrap();
-    let own = CameraSpec {
-        size: Some((w, h)),
-        ..CameraSpec::default()
+/// Adds a polygon in a mesh of its own called `name` (open: never back-face culled under
+/// `CullMode::Auto`).
+pub fn add_named_polygon(b: &mut SceneBuilder, name: &str, pts: &[DVec3]) {
+    b.begin_mesh(name);
+    let m = b.default_material();
+    let v: Vec<u32> = pts.iter().map(|&p| b.add_vertex(p)).collect();
+    b.add_face(&v, m);
+}
+
+/// Adds a polygon in a mesh of its own (open: never culled).
+pub fn add_polygon(b: &mut SceneBuilder, pts: &[DVec3]) {
+    add_named_polygon(b, "poly", pts);
+}
+
+/// Adds a triangle in a mesh of its own (open: never culled).
+pub fn add_triangle(b: &mut SceneBuilder, p: [DVec3; 3]) {
+    add_named_polygon(b, "tri", &p);
+}
+
+/// Adds a closed UV sphere of `seg` x `rings` in a mesh of its own.
+pub fn add_sphere(b: &mut SceneBuilder, c: DVec3, r: f64, seg: usize, rings: usize) {
+    b.begin_mesh("sphere");
+    let m = b.default_material();
+    primitives::add_sphere(b, &DMat4::from_translation(c), r, seg, rings, m);
+}
+
+/// Two interpenetrating boxes and a sphere of `seg` x `rings` passing through both: closed
+/// meshes, interpenetration, and silhouettes at every angle.
+pub fn boxes_and_sphere(seg: usize, rings: usize) -> Scene {
+    let mut b = SceneBuilder::new("boxes");
+    add_box(
+        &mut b,
+        DVec3::new(-1.0, -1.0, -1.0),
+        DVec3::new(0.3, 0.5, 0.2),
+        "a",
+    );
+    add_box(
+        &mut b,
+        DVec3::new(0.1, -0.4, -0.3),
+        DVec3::new(1.2, 0.9, 0.9),
+        "b",
+    );
+    add_sphere(&mut b, DVec3::new(-0.2, 0.6, 0.6), 0.55, seg, rings);
+    b.finish().unwrap()
+}
+
+/// `n` random triangles in [-1,1]^3 (overlapping and interpenetrating), each its own mesh.
+pub fn random_triangles(n: usize, seed: u64) -> Scene {
+    let mut rng = Rng(seed);
+    let mut b = SceneBuilder::new("random");
+    for _ in 0..n {
+        let c = rng.vec3(-1.0, 1.0);
+        let p = [
+            c + rng.vec3(-0.6, 0.6),
+            c + rng.vec3(-0.6, 0.6),
+            c + rng.vec3(-0.6, 0.6),
+        ];
+        add_triangle(&mut b, p);
     }
-    .resolve(bounds, scene.viewpoint.as_ref())
-    .unwrap();
-    vec![
-        own,
-        Camera::fit(NamedView::Iso, bounds, false, 40.0, w, h),
-        Camera::fit(NamedView::Front, bounds, true, 40.0, w, h),
-        Camera::fit(NamedView::Top, bounds, false, 60.0, w, h),
-    ]
-}
-
-/// Image size of [`lattice_camera`]: powers of two, so pixel centres fall exactly on the grid.
-pub const LATTICE_W: u32 = 64;
-pub const LATTICE_H: u32 = 32;
-
-/// Orthographic front camera: world x in [-2, 2], y in [-1, 1] fills the 64 x 32 image, and the
-/// world point [`lattice_point`]`(i, j, z)` projects exactly onto the centre of pixel (i, j).
-pub fn lattice_camera() -> Camera {
-    Camera {
-        eye: DVec3::new(0.0, 0.0, 5.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: Projection::Orthographic { height: 2.0 },
-        near: 1.0,
-        far: 10.0,
-        width: LATTICE_W,
-        height: LATTICE_H,
-    }
-}
-
-/// The world point on the centre of pixel (i, j) of [`lattice_camera`], at depth `z`.
-pub fn lattice_point(i: i64, j: i64, z: f64) -> DVec3 {
-    DVec3::new(
-        ((2 * i + 1) as f64 / LATTICE_W as f64 - 1.0) * 2.0,
-        1.0 - (2 * j + 1) as f64 / LATTICE_H as f64,
-        z,
-    )
+    b.finish().unwrap()
 }
 
 /// `n` faces (or so), mostly triangles, made to hit a pixel-exact renderer's hard cases, each in
 /// a mesh of its own (open: never culled) with a material of its own:
-/// - corners from a small shared pool, half of them on pixel centres of [`lattice_camera`] at
-///   one of three depths (edges and corners exactly through samples);
+/// - corners from a small shared pool, half of them on pixel centres of
+///   [`super::camera::lattice_camera`] at one of three depths (edges and corners exactly through
+///   samples);
 /// - quads split in two (a shared edge), triangles sharing an edge with an earlier one;
 /// - exact duplicates of earlier triangles, some reversed (coplanar overlap: exact depth ties
 ///   under any camera), and triangles at one constant depth (coplanar under view-aligned
