@@ -672,6 +672,7 @@ impl BspMethod {
                 background: super::background(fill),
                 items,
                 seams,
+                opaque_disjoint: true, // the opaque regions partition the opaque visible set
             },
             stats,
         }

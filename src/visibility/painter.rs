@@ -68,6 +68,7 @@ impl VisibilityMethod for Painter {
                 background: background(fill),
                 items,
                 seams: Default::default(),
+                opaque_disjoint: false, // whole faces overlap: their order is the picture
             },
             stats,
         }
