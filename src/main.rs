@@ -958,6 +958,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
     } else {
         let merge = format != OutputFormat::Json;
         let mut result = run_method(method, &scene, &prepared, &camera, a.fill, merge);
+        sightline::output::canonical::canonicalize(&mut result.drawing);
         if result.drawing.background.is_none() {
             result.drawing.background = background.map(|c| c.map(|v| v as f64 / 255.0));
         }
