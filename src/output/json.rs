@@ -29,6 +29,10 @@
 //! changes type, unit or meaning, or an ordering guarantee is dropped; a new field does not
 //! change it (readers ignore fields they do not know).
 //!
+//! Regions are written as the drawing has them: canonicalize it first
+//! ([`super::canonical::canonicalize`], as the CLI does) for bytes that depend only on what is
+//! drawn.
+//!
 //! JSON is per face: write it from a drawing made without surface merging (the CLI does); an
 //! item merged across faces would be listed under its first face only.
 //!
