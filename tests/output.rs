@@ -43,6 +43,7 @@ fn holed_drawing() -> Drawing {
             ),
         ],
         seams: Default::default(),
+        opaque_disjoint: false,
     }
 }
 
@@ -77,6 +78,7 @@ fn svg_keeps_every_digit_of_every_coordinate() {
             1.0,
         )],
         seams: Default::default(),
+        opaque_disjoint: false,
     };
     let svg = write_svg(&d, &SvgOptions::default());
     assert!(svg.contains("0.30000000000000004"), "{svg}");

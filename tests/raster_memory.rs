@@ -45,6 +45,7 @@ fn few_faces(w: f64, h: f64) -> Drawing {
         height: h as u32,
         background: Some([1.0, 1.0, 1.0]),
         seams: Default::default(),
+        opaque_disjoint: false,
         items: vec![
             DrawItem::new(
                 0,

@@ -11,7 +11,9 @@
 //!
 //! Invariant: the output rounding (one f64 rounding per exact vertex, then geo's union, far below
 //! a millionth of a pixel) is the only approximation between the visible set and the drawing;
-//! items keep the visible set's order (opaque regions, then the layered fragments).
+//! items keep the visible set's order (opaque regions, then the layered fragments) and the
+//! drawing is in canonical form ([`canonicalize`]): rings start at a defined vertex with a
+//! defined orientation, disjoint opaque regions are sorted by face.
 
 pub mod regions;
 pub mod seams;
@@ -19,6 +21,7 @@ pub mod seams;
 use crate::camera::Camera;
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
+use crate::output::canonical::canonicalize;
 use crate::output::drawing::{DrawItem, Drawing, SeamStroke, Seams};
 use crate::paint::{Fill, Paint, to_u8};
 use crate::progress::Report;
@@ -176,13 +179,22 @@ pub fn draw(
     } else {
         Seams::default()
     };
-    Drawing {
+    // The region items partition the opaque visible pieces; every layered fragment of an exact
+    // strategy is translucent. A painter layers opaque polygons that overlap: no promise.
+    let opaque_disjoint = visible
+        .layered
+        .iter()
+        .all(|f| !paints[f.poly() as usize].is_opaque());
+    let mut drawing = Drawing {
         width: screen.width,
         height: screen.height,
         background: options.background,
         items,
         seams,
-    }
+        opaque_disjoint,
+    };
+    canonicalize(&mut drawing);
+    drawing
 }
 
 /// The boundaries that opaque pieces of different groups share, stroked in the darker of the

@@ -51,6 +51,11 @@ pub struct Drawing {
     pub items: Vec<DrawItem>,
     /// Boundaries that opaque items share, painted under all items (empty unless asked for).
     pub seams: Seams,
+    /// True when the opaque items (opacity 1) before the first translucent one have pairwise
+    /// disjoint interiors, so that their order does not change the picture and
+    /// [`canonicalize`](super::canonical::canonicalize) may sort them. False, the safe value,
+    /// promises nothing and keeps every item in place (a painter's drawing overlaps).
+    pub opaque_disjoint: bool,
 }
 
 /// What fills the seams of a drawing: the boundary segments shared by two opaque items, stroked

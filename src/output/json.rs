@@ -5,6 +5,8 @@
 //!
 //! ```text
 //! {
+//!   "schema": "sightline/visible-set",        what this document is ([`SCHEMA`])
+//!   "version": 1,                             its version ([`VERSION`])
 //!   "width": W, "height": H,                  image size in pixels
 //!   "faces": [                                one entry per face id drawn, ids ascending
 //!     {
@@ -22,6 +24,15 @@
 //! }
 //! ```
 //!
+//! The README's "Output contract" lists every field, as a contract: a reader of version N
+//! reads every document of version N. [`VERSION`] goes up when a field is removed, renamed or
+//! changes type, unit or meaning, or an ordering guarantee is dropped; a new field does not
+//! change it (readers ignore fields they do not know).
+//!
+//! Regions are written as the drawing has them: canonicalize it first
+//! ([`super::canonical::canonicalize`], as the CLI does) for bytes that depend only on what is
+//! drawn.
+//!
 //! JSON is per face: write it from a drawing made without surface merging (the CLI does); an
 //! item merged across faces would be listed under its first face only.
 //!
@@ -37,8 +48,17 @@ use serde_json::ser::{Formatter, PrettyFormatter};
 use std::collections::BTreeMap;
 use std::io::{self, Write};
 
+/// The `schema` of every document: what it is.
+pub const SCHEMA: &str = "sightline/visible-set";
+
+/// The `version` of the schema this writer follows (see the module docs for when it changes).
+pub const VERSION: u32 = 1;
+
 #[derive(Serialize)]
 struct Doc<'a> {
+    // First, so that a reader knows what it reads before anything else.
+    schema: &'static str,
+    version: u32,
     width: u32,
     height: u32,
     faces: Vec<FaceOut<'a>>,
@@ -108,6 +128,8 @@ pub fn write_json(
         })
         .collect();
     let doc = Doc {
+        schema: SCHEMA,
+        version: VERSION,
         width: drawing.width,
         height: drawing.height,
         faces,
@@ -231,6 +253,25 @@ mod tests {
         let mut ser = serde_json::Serializer::with_formatter(&mut out, RingsInline::default());
         v.serialize(&mut ser).unwrap();
         String::from_utf8(out).unwrap()
+    }
+
+    #[test]
+    fn the_document_begins_with_its_schema_and_version() {
+        let d = Drawing {
+            width: 4,
+            height: 3,
+            background: None,
+            items: Vec::new(),
+            seams: Default::default(),
+            opaque_disjoint: false,
+        };
+        let text = write_json(&d, &Scene::default(), &serde_json::Map::new());
+        assert!(
+            text.starts_with(
+                "{\n  \"schema\": \"sightline/visible-set\",\n  \"version\": 1,\n  \"width\": 4,"
+            ),
+            "{text}"
+        );
     }
 
     #[test]

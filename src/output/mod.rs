@@ -17,6 +17,7 @@
 //! rasterized while it streams out): a program interrupted meanwhile calls
 //! [`remove_unfinished_outputs`] before it exits, so that nothing is left beside the target.
 
+pub mod canonical;
 pub mod drawing;
 pub mod json;
 pub mod png;

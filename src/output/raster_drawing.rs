@@ -350,6 +350,7 @@ mod tests {
                 1.0,
             )],
             seams: Default::default(),
+            opaque_disjoint: false,
         };
         let ids = face_ids(&d);
         let covered: Vec<(usize, usize)> = (0..25)
@@ -371,6 +372,7 @@ mod tests {
             background: None,
             items: vec![mk(a, [1.0, 0.0, 0.0]), mk(b, [0.0, 1.0, 0.0])],
             seams: Default::default(),
+            opaque_disjoint: false,
         };
         // Half opacity each over black: a pixel covered twice would show both colours.
         for c in colors(&d) {
@@ -425,6 +427,7 @@ mod tests {
             background: Some([0.5, 0.25, 1.0]),
             items,
             seams: Default::default(),
+            opaque_disjoint: false,
         };
         let ids = face_ids(&d);
         let cols = colors(&d);
@@ -466,6 +469,7 @@ mod tests {
                 1.0,
             )],
             seams: Default::default(),
+            opaque_disjoint: false,
         };
         assert!(face_ids(&d).iter().all(|&f| f == Some(1)));
         assert!(colors(&d).iter().all(|&c| c == [1.0; 3]));

@@ -11,6 +11,10 @@
 //!   rounded), `fill-opacity` only when below 1.
 //! - **Deterministic**: the same drawing and options give the same bytes (the `svg` crate writes
 //!   attributes sorted by name).
+//!
+//! Paths are written as the drawing has them: canonicalize it first
+//! ([`super::canonical::canonicalize`], as the CLI does) for bytes that depend only on what is
+//! drawn. The README's "Output contract" lists every element and attribute.
 
 use super::drawing::{Drawing, Seams};
 use crate::paint::to_u8;
