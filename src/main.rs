@@ -303,15 +303,20 @@ struct BenchArgs {
     camera: CameraArgs,
 }
 
-fn parse_vec3(s: &str) -> Result<DVec3, String> {
-    let v: Vec<f64> = s
-        .split(',')
+/// The comma-separated values of a flag, or an error naming the first that does not parse
+/// (`'{value}' is {not_one}`).
+fn parse_list<T: std::str::FromStr>(s: &str, not_one: &str) -> Result<Vec<T>, String> {
+    s.split(',')
         .map(|t| {
             t.trim()
-                .parse::<f64>()
-                .map_err(|_| format!("'{t}' is not a number"))
+                .parse::<T>()
+                .map_err(|_| format!("'{t}' is {not_one}"))
         })
-        .collect::<Result<_, _>>()?;
+        .collect()
+}
+
+fn parse_vec3(s: &str) -> Result<DVec3, String> {
+    let v: Vec<f64> = parse_list(s, "not a number")?;
     match v[..] {
         [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(DVec3::new(x, y, z)),
         [_, _, _] => Err("values must be finite".into()),
@@ -355,14 +360,7 @@ fn parse_background(s: &str) -> Result<Background, String> {
 }
 
 fn parse_rgb(s: &str) -> Result<[u8; 3], String> {
-    let v: Vec<u8> = s
-        .split(',')
-        .map(|t| {
-            t.trim()
-                .parse::<u8>()
-                .map_err(|_| format!("'{t}' is not in 0..=255"))
-        })
-        .collect::<Result<_, _>>()?;
+    let v: Vec<u8> = parse_list(s, "not in 0..=255")?;
     v.try_into()
         .map_err(|_| "expected r,g,b (three values in 0..=255)".to_string())
 }
