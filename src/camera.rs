@@ -17,21 +17,34 @@ use glam::{DMat4, DQuat, DVec3};
 /// How the view volume is shaped.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Projection {
-    /// Vertical field of view in degrees.
-    Perspective { fovy_deg: f64 },
-    /// Height of the view volume in world units.
-    Orthographic { height: f64 },
+    /// A perspective view (gluPerspective).
+    Perspective {
+        /// Vertical field of view in degrees.
+        fovy_deg: f64,
+    },
+    /// A parallel view (glOrtho).
+    Orthographic {
+        /// Height of the view volume in world units.
+        height: f64,
+    },
 }
 
 /// Named views, fitted to a bounding box (world +y is up, +z toward the front viewer).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum NamedView {
+    /// From +z, y up.
     Front,
+    /// From -z, y up.
     Back,
+    /// From +y, -z up.
     Top,
+    /// From -y, +z up.
     Bottom,
+    /// From -x, y up.
     Left,
+    /// From +x, y up.
     Right,
+    /// From (1, 1, 1), y up.
     Iso,
 }
 
@@ -56,13 +69,21 @@ pub const DEFAULT_FOVY_DEG: f64 = 40.0;
 /// A camera with its image size.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
+    /// Where the camera is (world space).
     pub eye: DVec3,
+    /// The point it looks at.
     pub target: DVec3,
+    /// The direction that appears up in the image (need not be orthogonal to the view).
     pub up: DVec3,
+    /// Perspective or orthographic.
     pub projection: Projection,
+    /// Distance of the near clipping plane along the view (may be negative when orthographic).
     pub near: f64,
+    /// Distance of the far clipping plane, beyond `near`.
     pub far: f64,
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
 }
 
@@ -71,14 +92,17 @@ pub struct Camera {
 pub const MAX_IMAGE_SIDE: u32 = 16384;
 
 impl Camera {
+    /// Width over height.
     pub fn aspect(&self) -> f64 {
         self.width as f64 / self.height as f64
     }
 
+    /// World to camera space: gluLookAt(eye, target, up).
     pub fn view_matrix(&self) -> DMat4 {
         dcamera::rh::view::look_at_mat4(self.eye, self.target, self.up)
     }
 
+    /// Camera to clip space: gluPerspective or glOrtho.
     pub fn projection_matrix(&self) -> DMat4 {
         match self.projection {
             Projection::Perspective { fovy_deg } => {
@@ -102,6 +126,7 @@ impl Camera {
         (self.target - self.eye).normalize()
     }
 
+    /// Is the projection a perspective one?
     pub fn is_perspective(&self) -> bool {
         matches!(self.projection, Projection::Perspective { .. })
     }
@@ -279,15 +304,25 @@ impl Camera {
 /// A camera as the user asked for it: every part optional, resolved against a scene.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct CameraSpec {
+    /// A camera file (`--cam`), the starting point when given ([`CamFile::read`]).
     pub cam_file: Option<CamFile>,
+    /// A named view fitted to the scene's bounds (`--view`).
     pub view: Option<NamedView>,
+    /// The eye (`--eye`).
     pub eye: Option<DVec3>,
+    /// The point looked at (`--target`).
     pub target: Option<DVec3>,
+    /// The up direction (`--up`).
     pub up: Option<DVec3>,
+    /// Perspective with this vertical field of view, degrees (`--fov`).
     pub fovy_deg: Option<f64>,
+    /// Orthographic with this view height (`--ortho`).
     pub ortho_height: Option<f64>,
+    /// Near plane distance (`--near`); fitted to the scene when not given.
     pub near: Option<f64>,
+    /// Far plane distance (`--far`); fitted to the scene when not given.
     pub far: Option<f64>,
+    /// Image size, width and height (`--size`); [`DEFAULT_SIZE`] when not given.
     pub size: Option<(u32, u32)>,
 }
 
@@ -295,6 +330,74 @@ pub struct CameraSpec {
 pub const DEFAULT_SIZE: (u32, u32) = (1024, 1024);
 
 impl CameraSpec {
+    /// Checks each numeric part within its own range, before a camera is built (where a bad
+    /// value would surface as some other part's error). The messages name the command line's
+    /// flags; `cam_path` names the camera file.
+    pub fn check(&self, cam_path: Option<&std::path::Path>) -> Result<(), Error> {
+        let bad = |m: String| Err(Error::Camera(m));
+        if let Some(f) = self.fovy_deg
+            && !(f > 0.0 && f < 180.0)
+        {
+            return bad(format!("--fov must be in (0, 180) degrees (got {f})"));
+        }
+        if let Some(h) = self.ortho_height
+            && !(h > 0.0 && h.is_finite())
+        {
+            return bad(format!("--ortho must be a view height > 0 (got {h})"));
+        }
+        for (flag, v) in [("--near", self.near), ("--far", self.far)] {
+            if let Some(v) = v
+                && !v.is_finite()
+            {
+                return bad(format!("{flag} must be a finite distance (got {v})"));
+            }
+        }
+        let from_file_ortho = self
+            .cam_file
+            .is_some_and(|c| matches!(c.projection(), Projection::Orthographic { .. }));
+        let perspective =
+            self.ortho_height.is_none() && (self.fovy_deg.is_some() || !from_file_ortho);
+        for (flag, v) in [("--near", self.near), ("--far", self.far)] {
+            if let Some(v) = v
+                && perspective
+                && v <= 0.0
+            {
+                return bad(format!(
+                    "{flag} must be > 0 for a perspective camera (got {v}; orthographic views, --ortho, take any value)"
+                ));
+            }
+        }
+        if let (Some(n), Some(f)) = (self.near, self.far)
+            && f <= n
+        {
+            return bad(format!(
+                "--near must be less than --far (near {n}, far {f})"
+            ));
+        }
+        // An orthographic camera file may put its near plane behind the eye; made perspective by
+        // --fov, it needs a near plane in front.
+        if let Some(file) = self.cam_file
+            && perspective
+            && self.near.is_none()
+            && file.near <= 0.0
+        {
+            let name = cam_path.map_or("the camera file".into(), |p| p.display().to_string());
+            return bad(format!(
+                "{name}: near {} is not > 0: --fov makes the camera perspective, which needs a near plane in front of the eye (give --near)",
+                file.near
+            ));
+        }
+        Ok(())
+    }
+
+    /// [`Self::resolve`] against `scene`: its bounds and its own viewpoint.
+    pub fn resolve_for(&self, scene: &crate::scene::Scene) -> Result<Camera, Error> {
+        let bounds = scene
+            .bounds()
+            .ok_or_else(|| Error::Camera(format!("{}: no face to look at", scene.source)))?;
+        self.resolve(bounds, scene.viewpoint.as_ref())
+    }
+
     /// The camera, in this order of precedence: a camera file; a named view fitted to the scene;
     /// an explicit eye/target; the scene's own viewpoint; the iso view fitted to the scene. Then
     /// explicit eye, target, up, projection, near and far override; near and far not given are
@@ -381,18 +484,36 @@ pub fn bounding_sphere((lo, hi): (DVec3, DVec3)) -> (DVec3, f64) {
 /// that line.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CamFile {
+    /// `eye x y z`.
     pub eye: DVec3,
+    /// `target x y z`.
     pub target: DVec3,
+    /// `up x y z`.
     pub up: DVec3,
     /// Vertical field of view in degrees; 0 for orthographic.
     pub fovy_deg: f64,
+    /// `ortho_height H`: the view height when `fovy` is 0.
     pub ortho_height: Option<f64>,
+    /// `near N`.
     pub near: f64,
+    /// `far F`.
     pub far: f64,
+    /// `size W H` ([`DEFAULT_SIZE`] when the file has none).
     pub size: (u32, u32),
 }
 
 impl CamFile {
+    /// Reads and parses the camera file at `path` (errors name it, and the line).
+    pub fn read(path: &std::path::Path) -> Result<CamFile, Error> {
+        let name = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+            path: name.clone(),
+            source,
+        })?;
+        Ok(CamFile::parse(&text, &name)?)
+    }
+
+    /// Parses the text of a camera file called `name` (for messages).
     pub fn parse(text: &str, name: &str) -> Result<CamFile, crate::LoadError> {
         use crate::LoadError;
         // Each key's values and the line they came from.
@@ -517,6 +638,7 @@ impl CamFile {
         }
     }
 
+    /// The camera the file describes, at its size.
     pub fn camera(&self) -> Camera {
         Camera {
             eye: self.eye,
@@ -689,5 +811,57 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("eye is too far") && !e.contains("near <"), "{e}");
+    }
+
+    /// Each numeric part out of its range is refused by `check`, naming the flag (or the
+    /// camera file), before any camera is built.
+    #[test]
+    fn check_names_the_flag_out_of_range() {
+        let err = |spec: CameraSpec, path: Option<&str>| {
+            spec.check(path.map(std::path::Path::new))
+                .unwrap_err()
+                .to_string()
+        };
+        let fov = CameraSpec {
+            fovy_deg: Some(180.0),
+            ..CameraSpec::default()
+        };
+        assert!(err(fov, None).starts_with("--fov must be in (0, 180)"));
+        let ortho = CameraSpec {
+            ortho_height: Some(0.0),
+            ..CameraSpec::default()
+        };
+        assert!(err(ortho, None).starts_with("--ortho must be"));
+        let behind = CameraSpec {
+            near: Some(-1.0),
+            ..CameraSpec::default()
+        };
+        assert!(err(behind, None).starts_with("--near must be > 0 for a perspective"));
+        let crossed = CameraSpec {
+            ortho_height: Some(2.0),
+            near: Some(3.0),
+            far: Some(3.0),
+            ..CameraSpec::default()
+        };
+        assert!(err(crossed, None).starts_with("--near must be less than --far"));
+        // An orthographic file whose near plane is behind the eye, made perspective by --fov.
+        let file = CamFile::parse(
+            "eye 0 0 5\ntarget 0 0 0\nup 0 1 0\nfovy 0\northo_height 2\nnear -1\nfar 9\n",
+            "o.cam",
+        )
+        .unwrap();
+        let spec = CameraSpec {
+            cam_file: Some(file),
+            fovy_deg: Some(30.0),
+            ..CameraSpec::default()
+        };
+        assert!(err(spec.clone(), Some("o.cam")).starts_with("o.cam: near -1 is not > 0"));
+        // The same file as it is: orthographic, any near plane.
+        let spec = CameraSpec {
+            fovy_deg: None,
+            ..spec
+        };
+        assert!(spec.check(None).is_ok());
+        assert!(CameraSpec::default().check(None).is_ok());
     }
 }

@@ -28,14 +28,15 @@ macro_rules! println {
 use clap::{Args, Parser, Subcommand};
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use sightline::camera::{CamFile, Camera, CameraSpec, NamedView, Projection};
-use sightline::draw::{DrawOptions, draw};
-use sightline::methods::{self, Engine, METHODS, Method, Output};
+use sightline::camera::{CamFile, Camera, CameraSpec, NamedView};
+use sightline::methods::{self, METHODS, Method, Output};
 use sightline::output::{png, write_with};
 use sightline::pipeline::{self, Fill};
 use sightline::project::CullMode;
 use sightline::raster::renderer::RasterOptions;
-use sightline::scene::{self, Format, Scene};
+use sightline::render::{self, Background, RenderOptions};
+use sightline::report::SceneReport;
+use sightline::scene::{self, CameraLights, DEFAULT_SHININESS, Format, Light, Scene, SceneLights};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -157,20 +158,6 @@ fn method_arg() -> impl clap::builder::TypedValueParser<Value = &'static Method>
     .map(|name| methods::method(&name).expect("only registered names parse"))
 }
 
-/// The names of the registered methods with a capability, for messages: "a, b or c".
-fn names_with(capable: impl Fn(&Method) -> bool) -> String {
-    let names: Vec<&str> = METHODS
-        .iter()
-        .filter(|m| capable(m))
-        .map(|m| m.name)
-        .collect();
-    match names.split_last() {
-        Some((last, [])) => last.to_string(),
-        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
-        None => String::new(),
-    }
-}
-
 /// `--shading`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 enum ShadingArg {
@@ -223,7 +210,7 @@ struct RenderArgs {
     /// rectangle, for figures placed over other content). Default: an X3D scene's Background
     /// skyColor (black when it has none, as X3D specifies), white for other formats.
     #[arg(long, value_parser = parse_background, value_name = "R,G,B|none", allow_hyphen_values = true)]
-    background: Option<BackgroundArg>,
+    background: Option<Background>,
     /// Also write the depth buffer as 16-bit grey PNG (0 near, 65535 far and background).
     #[arg(long, value_name = "FILE.png")]
     depth: Option<PathBuf>,
@@ -262,9 +249,6 @@ struct RenderArgs {
     #[arg(long)]
     stats: bool,
 }
-
-/// `--shininess` when not given.
-const DEFAULT_SHININESS: f64 = 32.0;
 
 #[derive(Args)]
 struct CompareArgs {
@@ -319,15 +303,20 @@ struct BenchArgs {
     camera: CameraArgs,
 }
 
-fn parse_vec3(s: &str) -> Result<DVec3, String> {
-    let v: Vec<f64> = s
-        .split(',')
+/// The comma-separated values of a flag, or an error naming the first that does not parse
+/// (`'{value}' is {not_one}`).
+fn parse_list<T: std::str::FromStr>(s: &str, not_one: &str) -> Result<Vec<T>, String> {
+    s.split(',')
         .map(|t| {
             t.trim()
-                .parse::<f64>()
-                .map_err(|_| format!("'{t}' is not a number"))
+                .parse::<T>()
+                .map_err(|_| format!("'{t}' is {not_one}"))
         })
-        .collect::<Result<_, _>>()?;
+        .collect()
+}
+
+fn parse_vec3(s: &str) -> Result<DVec3, String> {
+    let v: Vec<f64> = parse_list(s, "not a number")?;
     match v[..] {
         [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(DVec3::new(x, y, z)),
         [_, _, _] => Err("values must be finite".into()),
@@ -363,43 +352,15 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 }
 
 /// `--background`: a colour, or none at all.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum BackgroundArg {
-    Color([u8; 3]),
-    None,
-}
-
-fn parse_background(s: &str) -> Result<BackgroundArg, String> {
+fn parse_background(s: &str) -> Result<Background, String> {
     match s.trim() {
-        "none" => Ok(BackgroundArg::None),
-        rgb => parse_rgb(rgb).map(BackgroundArg::Color),
-    }
-}
-
-/// The background a render draws: the flag's, else the scene's own (an X3D Background), else
-/// white. `None`: no background (`--background none`, SVG only).
-fn background_of(flag: Option<BackgroundArg>, scene: &Scene) -> Option<[u8; 3]> {
-    match flag {
-        Some(BackgroundArg::None) => None,
-        Some(BackgroundArg::Color(c)) => Some(c),
-        None => Some(
-            scene
-                .background
-                .map(sightline::paint::to_u8)
-                .unwrap_or([255; 3]),
-        ),
+        "none" => Ok(Background::None),
+        rgb => parse_rgb(rgb).map(Background::Color),
     }
 }
 
 fn parse_rgb(s: &str) -> Result<[u8; 3], String> {
-    let v: Vec<u8> = s
-        .split(',')
-        .map(|t| {
-            t.trim()
-                .parse::<u8>()
-                .map_err(|_| format!("'{t}' is not in 0..=255"))
-        })
-        .collect::<Result<_, _>>()?;
+    let v: Vec<u8> = parse_list(s, "not in 0..=255")?;
     v.try_into()
         .map_err(|_| "expected r,g,b (three values in 0..=255)".to_string())
 }
@@ -497,20 +458,8 @@ fn load_scene(input: &InputArgs) -> sightline::Result<Scene> {
 }
 
 fn camera_for(args: &CameraArgs, scene: &Scene) -> sightline::Result<Camera> {
-    let cam_file = match &args.cam {
-        Some(path) => {
-            let name = path.display().to_string();
-            let text = std::fs::read_to_string(path).map_err(|e| sightline::Error::Io {
-                path: name.clone(),
-                source: e,
-            })?;
-            Some(CamFile::parse(&text, &name)?)
-        }
-        None => None,
-    };
-    check_camera_flags(args, cam_file.as_ref())?;
     let spec = CameraSpec {
-        cam_file,
+        cam_file: args.cam.as_deref().map(CamFile::read).transpose()?,
         view: args.view,
         eye: args.eye,
         target: args.target,
@@ -521,92 +470,8 @@ fn camera_for(args: &CameraArgs, scene: &Scene) -> sightline::Result<Camera> {
         far: args.far,
         size: args.size,
     };
-    let bounds = scene
-        .bounds()
-        .expect("a loaded scene has at least one face");
-    spec.resolve(bounds, scene.viewpoint.as_ref())
-}
-
-/// Each numeric camera flag within its own range, named in the message (before the camera is
-/// built, where a bad value would surface as some other part's error).
-fn check_camera_flags(args: &CameraArgs, cam_file: Option<&CamFile>) -> sightline::Result<()> {
-    let bad = |m: String| Err(sightline::Error::Camera(m));
-    if let Some(f) = args.fov
-        && !(f > 0.0 && f < 180.0)
-    {
-        return bad(format!("--fov must be in (0, 180) degrees (got {f})"));
-    }
-    if let Some(h) = args.ortho
-        && !(h > 0.0 && h.is_finite())
-    {
-        return bad(format!("--ortho must be a view height > 0 (got {h})"));
-    }
-    for (flag, v) in [("--near", args.near), ("--far", args.far)] {
-        if let Some(v) = v
-            && !v.is_finite()
-        {
-            return bad(format!("{flag} must be a finite distance (got {v})"));
-        }
-    }
-    let from_file_ortho =
-        cam_file.is_some_and(|c| matches!(c.projection(), Projection::Orthographic { .. }));
-    let perspective = args.ortho.is_none() && (args.fov.is_some() || !from_file_ortho);
-    for (flag, v) in [("--near", args.near), ("--far", args.far)] {
-        if let Some(v) = v
-            && perspective
-            && v <= 0.0
-        {
-            return bad(format!(
-                "{flag} must be > 0 for a perspective camera (got {v}; orthographic views, --ortho, take any value)"
-            ));
-        }
-    }
-    if let (Some(n), Some(f)) = (args.near, args.far)
-        && f <= n
-    {
-        return bad(format!(
-            "--near must be less than --far (near {n}, far {f})"
-        ));
-    }
-    // An orthographic camera file may put its near plane behind the eye; made perspective by
-    // --fov, it needs a near plane in front.
-    if let (Some(file), Some(path)) = (cam_file, &args.cam)
-        && perspective
-        && args.near.is_none()
-        && file.near <= 0.0
-    {
-        return bad(format!(
-            "{}: near {} is not > 0: --fov makes the camera perspective, which needs a near plane in front of the eye (give --near)",
-            path.display(),
-            file.near
-        ));
-    }
-    Ok(())
-}
-
-fn output_format(a: &RenderArgs) -> sightline::Result<OutputFormat> {
-    if let Some(f) = a.to {
-        return Ok(f);
-    }
-    let ext = a
-        .output
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    Ok(match ext.as_deref() {
-        Some("png") => OutputFormat::Png,
-        Some("svg") => OutputFormat::Svg,
-        Some("json") => OutputFormat::Json,
-        _ if a.output.as_os_str() == "-" => match a.method.is_none_or(Method::is_image_space) {
-            true => OutputFormat::Png,
-            false => OutputFormat::Svg,
-        },
-        _ => {
-            return Err(sightline::Error::Output(format!(
-                "{}: unknown output extension (use .png, .svg or .json, or --to)",
-                a.output.display()
-            )));
-        }
-    })
+    spec.check(args.cam.as_deref())?;
+    spec.resolve_for(scene)
 }
 
 /// Would this run dump a binary PNG onto a terminal (`-o -` with standard output a terminal)?
@@ -626,53 +491,6 @@ fn is_terminal_path(path: &Path) -> bool {
             .is_ok_and(|f| f.is_terminal())
 }
 
-/// The first flag given that this output would ignore, with why; `None` when all apply.
-fn ignored_flag(a: &RenderArgs, format: OutputFormat) -> Option<String> {
-    let name = |f: OutputFormat| match f {
-        OutputFormat::Png => "PNG",
-        OutputFormat::Svg => "SVG",
-        OutputFormat::Json => "JSON",
-    };
-    let svg_only = [
-        ("--stroke", a.stroke),
-        ("--crisp", a.crisp),
-        (
-            "--background none",
-            a.background == Some(BackgroundArg::None),
-        ),
-    ];
-    if let Some((flag, _)) = svg_only.iter().find(|(_, given)| *given)
-        && format != OutputFormat::Svg
-    {
-        return Some(format!(
-            "{flag} applies to SVG output only (this run writes {})",
-            name(format)
-        ));
-    }
-    // Flags that change the shaded colours (values other than the defaults).
-    let lighting = [
-        ("--specular", a.specular != 0.0),
-        ("--shininess", a.shininess != DEFAULT_SHININESS),
-        ("--light", !a.light.is_empty()),
-        ("--headlight", a.headlight),
-        ("--no-headlight", a.no_headlight),
-        ("--background", a.background.is_some()),
-        ("--shading", a.shading != ShadingArg::Flat),
-    ];
-    let (flag, _) = lighting.iter().find(|(_, given)| *given)?;
-    if a.fill == Fill::Id {
-        return Some(format!(
-            "{flag} changes shaded colours: it does not apply to --fill id (face ids as colours)"
-        ));
-    }
-    if format == OutputFormat::Json {
-        return Some(format!(
-            "{flag} changes colours: it does not apply to JSON output (regions and materials, no colours)"
-        ));
-    }
-    None
-}
-
 /// Progress bars for the library's long stages when standard error is a terminal; `None`
 /// otherwise (no cost, no output).
 fn with_bars<T>(run: impl FnOnce(Option<sightline::progress::Report>) -> T) -> T {
@@ -682,9 +500,20 @@ fn with_bars<T>(run: impl FnOnce(Option<sightline::progress::Report>) -> T) -> T
 }
 
 fn render(a: RenderArgs) -> sightline::Result<()> {
-    let format = output_format(&a)?;
-    // The exact visible set for vector output; the reference z-buffer for pixels.
-    let method = a.method.unwrap_or(methods::default_for(format));
+    let format = match a.to {
+        Some(f) => f,
+        None => render::output_for(&a.output, a.method)?,
+    };
+    let options = RenderOptions {
+        format,
+        method: a.method,
+        fill: a.fill,
+        background: a.background.unwrap_or_default(),
+        shading: a.shading.into(),
+        depth: a.depth.is_some(),
+        stroke: a.stroke,
+        crisp: a.crisp,
+    };
     if refuses_binary_output(format, &a.output, std::io::stdout().is_terminal())
         || (format == OutputFormat::Png && is_terminal_path(&a.output))
     {
@@ -692,198 +521,42 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             "not writing a binary PNG to a terminal: redirect standard output (-o - > out.png), or give a file (-o out.png)".into(),
         ));
     }
-    if let Some(message) = ignored_flag(&a, format) {
-        return Err(sightline::Error::Output(message));
-    }
-    if !method.writes(format) {
-        return Err(sightline::Error::Output(format!(
-            "--method {} draws pixels: write it as PNG (for SVG or JSON use --method {})",
-            method.name,
-            names_with(|m| m.writes(format))
-        )));
-    }
-    if a.depth.is_some() && !method.depth {
-        return Err(sightline::Error::Output(format!(
-            "--depth needs --method {}",
-            names_with(|m| m.depth)
-        )));
-    }
-    if a.shading != ShadingArg::Flat && !method.shading {
-        return Err(sightline::Error::Output(format!(
-            "--shading {} needs --method {} ({} draws flat colours)",
-            clap::ValueEnum::to_possible_value(&a.shading)
-                .map(|v| v.get_name().to_string())
-                .unwrap_or_default(),
-            names_with(|m| m.shading),
-            method.name
-        )));
-    }
-    for (name, v) in [("--specular", a.specular), ("--shininess", a.shininess)] {
-        if !(v.is_finite() && v >= 0.0) {
-            return Err(sightline::Error::Output(format!(
-                "{name} must be a finite number >= 0, not {v}"
-            )));
-        }
-    }
+    let lights = SceneLights {
+        camera: match (a.headlight, a.no_headlight) {
+            (true, _) => CameraLights::Headlight,
+            (_, true) => CameraLights::None,
+            _ => CameraLights::KeyFill,
+        },
+        lights: a
+            .light
+            .iter()
+            .map(|&from| Light::white_from(from))
+            .collect(),
+        specular: a.specular,
+        shininess: a.shininess,
+    };
+    let method = options.check(&lights)?;
     let t0 = Instant::now();
     let mut scene = load_scene(&a.input)?;
     let t_load = t0.elapsed();
-    scene.lights.camera = match (a.headlight, a.no_headlight) {
-        (true, _) => sightline::scene::CameraLights::Headlight,
-        (_, true) => sightline::scene::CameraLights::None,
-        _ => sightline::scene::CameraLights::KeyFill,
-    };
-    scene.lights.specular = a.specular;
-    scene.lights.shininess = a.shininess;
-    for l in &a.light {
-        if *l == DVec3::ZERO {
-            return Err(sightline::Error::Output(
-                "--light 0,0,0 has no direction".into(),
-            ));
-        }
-        scene
-            .lights
-            .lights
-            .push(sightline::scene::Light::Directional {
-                direction: -*l,
-                intensity: [1.0; 3],
-            });
-    }
+    scene.lights = lights;
     let camera = camera_for(&a.camera, &scene)?;
     let t1 = Instant::now();
     let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
     let t_project = t1.elapsed();
-    if prepared.screen.polys.is_empty() {
-        let st = &prepared.screen.stats;
-        eprintln!(
-            "warning: the camera sees none of the {} faces ({} outside the view, {} back faces culled): the output shows only the background",
-            st.faces, st.frustum_culled, st.backface_culled
-        );
-    }
-    let background = background_of(a.background, &scene);
-    // PNG pixels always have a background (`--background none` is refused for PNG above).
-    let background_rgb = background.unwrap_or([255; 3]);
     let t2 = Instant::now();
-    // What writes the output, streamed into the file (a drawing's PNG is rasterized by strips).
-    type Emit<'a> = Box<dyn FnOnce(&mut dyn std::io::Write) -> std::io::Result<()> + 'a>;
-    let paints = sightline::paint::screen_paints(&scene, &prepared.screen, &camera, a.fill);
-    let (emit, detail): (Emit, _) = if let Engine::Image(renderer) = method.engine {
-        let options = RasterOptions {
-            paints: &paints,
-            background: match a.fill {
-                Fill::Id => [0.0; 3],
-                Fill::Shade => background_rgb.map(|c| c as f64 / 255.0),
-            },
-            blend: a.fill == Fill::Shade,
-            depth: a.depth.is_some(),
-        };
-        let r = with_bars(|report| renderer.render(&prepared.screen, &options, report));
-        use sightline::raster::lighting;
-        let textured = scene.material_textures.iter().any(Option::is_some);
-        if textured && !method.shading && a.fill == Fill::Shade {
-            eprintln!(
-                "warning: --method {} fills flat colours: textures are not applied (use --method {})",
-                method.name,
-                names_with(|m| m.shading)
-            );
-        }
-        let image = match r.blended {
-            Some(colors) => colors.into_iter().map(sightline::paint::to_u8).collect(),
-            // Per-pixel lighting or textures: the ray through each pixel centre.
-            None if a.fill == Fill::Shade && (a.shading != ShadingArg::Flat || textured) => {
-                let textures = lighting::Textures::load(&scene);
-                for w in &textures.warnings {
-                    eprintln!("warning: {w}");
-                }
-                lighting::shade_polys(
-                    &scene,
-                    &prepared.screen,
-                    &r.poly,
-                    camera.width,
-                    &camera,
-                    &lighting::Lighting::of_scene(&scene, &camera),
-                    a.shading.into(),
-                    &textures,
-                    background_rgb.map(|c| c as f64 / 255.0),
-                )
-                .into_iter()
-                .map(sightline::paint::to_u8)
-                .collect()
-            }
-            None => pipeline::colorize_polys(
-                &scene,
-                &prepared.screen,
-                &r.poly,
-                &camera,
-                a.fill,
-                background_rgb,
-            ),
-        };
-        if let (Some(depth_path), Some(depth)) = (&a.depth, &r.depth) {
-            write_with(depth_path, |w| {
-                png::write_depth16(w, camera.width, camera.height, depth)
-            })?;
-        }
-        let (width, height) = (camera.width, camera.height);
-        (
-            Box::new(move |w| png::write_rgb(w, width, height, &image)),
-            r.detail,
-        )
-    } else {
-        let Engine::Object(strategy) = method.engine else {
-            unreachable!("a method is object-space or image-space")
-        };
-        // Pictures merge the regions of one surface and fill their seams; JSON keeps faces apart.
-        let options = match format {
-            OutputFormat::Json => DrawOptions::per_face(),
-            OutputFormat::Svg | OutputFormat::Png => DrawOptions::picture(),
-        };
-        let visible = with_bars(|report| {
-            strategy.visible_set(
-                &prepared.screen,
-                &|k| !paints[k as usize].is_opaque(),
-                report,
-            )
-        });
-        let mut drawing = with_bars(|report| {
-            draw(
-                &scene,
-                &prepared.screen,
-                &camera,
-                &paints,
-                &visible,
-                options.with_background(a.fill, None),
-                report,
-            )
-        });
-        if drawing.background.is_none() {
-            drawing.background = background.map(|c| c.map(|v| v as f64 / 255.0));
-        }
-        let stats = visible.stats;
-        let detail = serde_json::Value::Object(stats.clone()).to_string();
-        let emit: Emit = match format {
-            OutputFormat::Svg => {
-                let options = sightline::output::svg::SvgOptions {
-                    stroke: a.stroke.then_some(([0.0; 3], 0.5)),
-                    crisp: a.crisp,
-                };
-                let svg = sightline::output::svg::write_svg(&drawing, &options);
-                Box::new(move |w| w.write_all(svg.as_bytes()))
-            }
-            OutputFormat::Json => {
-                let mut stats = stats;
-                stats.insert("method".into(), method.name.into());
-                let json = sightline::output::json::write_json(&drawing, &scene, &stats);
-                Box::new(move |w| w.write_all(json.as_bytes()))
-            }
-            OutputFormat::Png => {
-                Box::new(move |w| sightline::output::raster_drawing::write_png(&drawing, w))
-            }
-        };
-        (emit, detail)
-    };
+    let rendered =
+        with_bars(|report| render::render(&scene, &camera, &prepared.screen, &options, report))?;
     let t_method = t2.elapsed();
-    write_with(&a.output, emit)?;
+    for w in &rendered.warnings {
+        eprintln!("warning: {w}");
+    }
+    if let (Some(depth_path), Some(depth)) = (&a.depth, &rendered.depth) {
+        write_with(depth_path, |w| {
+            png::write_depth16(w, camera.width, camera.height, depth)
+        })?;
+    }
+    write_with(&a.output, |w| rendered.write(w))?;
     if a.stats {
         let s = &prepared.screen.stats;
         eprintln!(
@@ -902,7 +575,7 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             s.clipped,
             s.degenerate_after_snap
         );
-        eprintln!("{detail}");
+        eprintln!("{}", rendered.detail);
     }
     Ok(())
 }
@@ -965,7 +638,13 @@ fn info(a: InfoArgs) -> sightline::Result<()> {
     let scene = load_scene(&a.input)?;
     let camera = camera_for(&a.camera, &scene)?;
     let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
-    print!("{}", describe(&a.input.input, &scene, &camera, &prepared));
+    let report = SceneReport {
+        file: &a.input.input,
+        scene: &scene,
+        camera: &camera,
+        prepared: &prepared,
+    };
+    print!("{report}");
     Ok(())
 }
 
@@ -1008,29 +687,16 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
         // Shaded paints, so that translucent faces take the path they take in `render`.
         let paints =
             sightline::paint::screen_paints(&scene, &prepared.screen, &camera, Fill::Shade);
-        let t = Instant::now();
-        report = match a.method.engine {
-            Engine::Image(renderer) => {
-                let options = RasterOptions {
-                    paints: &paints,
-                    background: [1.0; 3],
-                    blend: true,
-                    depth: false,
-                };
-                let r = renderer.render(&prepared.screen, &options, None);
-                method_times.push(t.elapsed().as_secs_f64());
-                r.detail
-            }
-            Engine::Object(strategy) => {
-                let visible = strategy.visible_set(
-                    &prepared.screen,
-                    &|k| !paints[k as usize].is_opaque(),
-                    None,
-                );
-                method_times.push(t.elapsed().as_secs_f64());
-                serde_json::Value::Object(visible.stats).to_string()
-            }
+        let options = RasterOptions {
+            paints: &paints,
+            background: [1.0; 3],
+            blend: true,
+            depth: false,
         };
+        let t = Instant::now();
+        let computed = render::compute(a.method, &prepared.screen, &options, None);
+        method_times.push(t.elapsed().as_secs_f64());
+        report = computed.detail();
         screen_stats = Some(prepared.screen.stats);
         bar.set_position(k as u64 + 1);
     }
@@ -1075,118 +741,6 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
         st.visible_polys, st.backface_culled, st.frustum_culled, report
     );
     Ok(())
-}
-
-fn describe(path: &Path, scene: &Scene, camera: &Camera, p: &pipeline::Prepared) -> String {
-    use std::fmt::Write;
-    let mut o = String::new();
-    let an = &p.analysis;
-    let st = &p.screen.stats;
-    let (lo, hi) = scene.bounds().expect("non-empty scene");
-    let v3 = |v: DVec3| format!("({}, {}, {})", v.x, v.y, v.z);
-    let _ = writeln!(o, "file: {}", path.display());
-    let _ = writeln!(
-        o,
-        "faces: {} polygons from {} input faces ({} degenerate dropped, {} non-planar triangulated)",
-        scene.faces.len(),
-        scene.input_faces,
-        scene.stats.degenerate_dropped,
-        scene.stats.nonplanar_triangulated
-    );
-    let _ = writeln!(o, "vertices: {}", scene.positions.len());
-    let closed = an.meshes.iter().filter(|m| m.closed()).count();
-    let _ = writeln!(
-        o,
-        "meshes: {} ({} closed, {} open)",
-        scene.meshes.len(),
-        closed,
-        scene.meshes.len() - closed
-    );
-    for (m, ma) in scene.meshes.iter().zip(&an.meshes).take(20) {
-        let state = if ma.closed() {
-            if ma.inside_out() {
-                "closed, inside-out (flipped)".to_string()
-            } else if ma.cullable() {
-                "closed".to_string()
-            } else {
-                "closed, orientation uncertain (zero volume)".to_string()
-            }
-        } else {
-            format!(
-                "open ({} boundary, {} non-manifold, {} inconsistent edges)",
-                ma.boundary_edges, ma.nonmanifold_edges, ma.inconsistent_edges
-            )
-        };
-        let _ = writeln!(
-            o,
-            "  {}: {} faces, {}, volume {:.6e}",
-            m.name,
-            m.faces.len(),
-            state,
-            ma.signed_volume
-        );
-    }
-    if scene.meshes.len() > 20 {
-        let _ = writeln!(o, "  ... {} more", scene.meshes.len() - 20);
-    }
-    let _ = writeln!(o, "bounds: min {} max {}", v3(lo), v3(hi));
-    let proj = match camera.projection {
-        Projection::Perspective { fovy_deg } => format!("perspective, fovy {fovy_deg} deg"),
-        Projection::Orthographic { height } => format!("orthographic, height {height}"),
-    };
-    let _ = writeln!(
-        o,
-        "camera: {proj}, eye {}, target {}, up {}, near {}, far {}, {}x{}",
-        v3(camera.eye),
-        v3(camera.target),
-        v3(camera.up),
-        camera.near,
-        camera.far,
-        camera.width,
-        camera.height
-    );
-    let _ = writeln!(
-        o,
-        "culling: {} frustum culled, {} back faces culled ({} meshes cullable, {} cut by the near plane), {} clipped, {} degenerate after snapping",
-        st.frustum_culled,
-        st.backface_culled,
-        st.culled_meshes,
-        st.meshes_cut_by_near,
-        st.clipped,
-        st.degenerate_after_snap
-    );
-    let _ = writeln!(o, "on screen: {} polygons", st.visible_polys);
-    let _ = writeln!(o, "stages needed:");
-    let overlap = pipeline::screen_extents_overlap(&p.screen);
-    let _ = writeln!(
-        o,
-        "  depth ordering (overlapping screen extents): {}",
-        if overlap { "yes" } else { "no" }
-    );
-    let _ = writeln!(
-        o,
-        "  splitting (interpenetration possible between meshes): {}",
-        if an.overlapping_mesh_pairs > 0 {
-            format!(
-                "yes, {} pairs of meshes with overlapping bounds",
-                an.overlapping_mesh_pairs
-            )
-        } else {
-            "no (self-intersection within a mesh is not checked)".to_string()
-        }
-    );
-    let _ = writeln!(
-        o,
-        "  blending (translucency): {}",
-        if an.translucent_faces > 0 {
-            format!("yes, {} translucent faces", an.translucent_faces)
-        } else {
-            "no".to_string()
-        }
-    );
-    let _ = writeln!(o, "two-sided faces: {}", an.two_sided_faces);
-    let _ = writeln!(o, "warnings: {}", scene.stats.warnings.len());
-    o
 }
 
 #[cfg(test)]

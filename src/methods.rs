@@ -33,8 +33,11 @@ pub enum Engine {
 /// An output format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Output {
+    /// Vector drawing: one path per visible region (object-space methods).
     Svg,
+    /// Per face: its visible regions as rings, and the run's counters (object-space methods).
     Json,
+    /// Pixels, 8-bit RGB (every method).
     Png,
 }
 
@@ -45,6 +48,7 @@ pub struct Method {
     pub name: &'static str,
     /// One line for the help text.
     pub summary: &'static str,
+    /// What computes its result.
     pub engine: Engine,
     /// Interior mismatch against the z-buffer is 0 (see the module docs). Approximate methods
     /// are measured, not trusted.
@@ -142,6 +146,20 @@ pub fn method(name: &str) -> Option<&'static Method> {
     METHODS.iter().find(|m| m.name == name)
 }
 
+/// The names of the registered methods with a capability, for messages: "a, b or c".
+pub fn names_with(capable: impl Fn(&Method) -> bool) -> String {
+    let names: Vec<&str> = METHODS
+        .iter()
+        .filter(|m| capable(m))
+        .map(|m| m.name)
+        .collect();
+    match names.split_last() {
+        Some((last, [])) => last.to_string(),
+        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+        None => String::new(),
+    }
+}
+
 /// The method used when none is asked for: the exact visible set for vector output, the
 /// reference z-buffer for pixels.
 pub fn default_for(output: Output) -> &'static Method {
@@ -211,6 +229,13 @@ mod tests {
             assert!(!m.outputs.is_empty(), "{}", m.name);
         }
         assert!(method("nope").is_none());
+    }
+
+    #[test]
+    fn names_with_lists_the_capable_methods_in_registry_order() {
+        assert_eq!(names_with(|m| m.depth), "zbuffer");
+        assert_eq!(names_with(|m| m.shading), "zbuffer, scanline or warnock");
+        assert_eq!(names_with(|_| false), "");
     }
 
     #[test]

@@ -12,7 +12,9 @@ pub use crate::paint::Fill;
 
 /// A scene seen by a camera: analysed, projected, culled.
 pub struct Prepared {
+    /// Camera-independent facts: closed meshes, translucency, overlapping meshes.
     pub analysis: SceneAnalysis,
+    /// The faces the camera sees, projected and snapped to the exact grid.
     pub screen: ScreenScene,
 }
 

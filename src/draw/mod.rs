@@ -4,7 +4,7 @@
 //! Steps: each visible piece's vertices are rounded to pixels once ([`regions::shared_vertex_pixels`],
 //! so abutting pieces share their rounded vertices); the pieces of a group (one face, or with
 //! [`DrawOptions::merge_surfaces`] one surface of coplanar faces of one paint,
-//! [`regions::surfaces`]) are united into regions with holes ([`regions`]); the layered
+//! [`regions::surfaces`]) are united into regions with holes ([`regions()`]); the layered
 //! fragments follow, one item per run of one polygon, so a viewer never blends their common
 //! edges twice; with [`DrawOptions::seams`], the boundaries that opaque regions share are
 //! collected as strokes under the fills ([`seams`]).
@@ -77,7 +77,9 @@ impl DrawOptions {
 /// A strategy's drawing and its counters.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Picture {
+    /// The drawing.
     pub drawing: Drawing,
+    /// The strategy's counters.
     pub stats: Stats,
 }
 

@@ -36,7 +36,9 @@
 //! bound cannot decide do they fall back to the integer computation. Every fallback is counted
 //! in [`Fallbacks`].
 
+#[allow(missing_docs)] // documented by the lead (issue 9)
 pub mod polygon;
+#[allow(missing_docs)] // documented by the lead (issue 9)
 pub mod predicates;
 
 use bnum::cast::As;
@@ -58,8 +60,11 @@ pub const U: f64 = f64::EPSILON / 2.0;
 /// A snapped corner.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct GridPoint {
+    /// `round(ndc_x · 2^22)`.
     pub x: i32,
+    /// `round(ndc_y · 2^22)`, growing upward.
     pub y: i32,
+    /// `round(ndc_z · 2^23)`, smaller is nearer.
     pub z: i32,
 }
 
@@ -96,9 +101,13 @@ pub fn twice_signed_area(points: &[GridPoint]) -> i128 {
 /// (`c > 0`, through three snapped corners) or an edge plane (`c == 0`, vertical, through two).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Plane {
+    /// Coefficient of x.
     pub a: i64,
+    /// Coefficient of y.
     pub b: i64,
+    /// Coefficient of z: positive for a support plane, 0 for an edge plane.
     pub c: i64,
+    /// The constant term.
     pub d: i128,
 }
 
@@ -181,11 +190,15 @@ impl Plane {
 /// `x = (2i + 1 - W)·2^22 / W`, `y = (H - 2j - 1)·2^22 / H`.
 #[derive(Clone, Copy, Debug)]
 pub struct Samples {
+    /// Image width W in pixels.
     pub width: i64,
+    /// Image height H in pixels.
     pub height: i64,
 }
 
 impl Samples {
+    /// The samples of a `width x height` image (each side at most
+    /// [`MAX_IMAGE_SIDE`](crate::camera::MAX_IMAGE_SIDE)).
     pub fn new(width: u32, height: u32) -> Samples {
         debug_assert!(
             width <= crate::camera::MAX_IMAGE_SIDE && height <= crate::camera::MAX_IMAGE_SIDE
@@ -289,13 +302,18 @@ fn div_ceil(n: i128, d: i128) -> i128 {
 /// `|z_f64 - z| <= 12·U·(|zi|·W + |zj|·H + |z0| + 2^24)`; `err` takes 16·U for margin.
 #[derive(Clone, Copy, Debug)]
 pub struct DepthPlane {
+    /// Depth change per sample column.
     pub zi: f64,
+    /// Depth change per sample row.
     pub zj: f64,
+    /// Depth at sample (0, 0).
     pub z0: f64,
+    /// The bound on the error of [`Self::at`] anywhere in the image.
     pub err: f64,
 }
 
 impl DepthPlane {
+    /// The depth of `plane` across the samples `s`.
     pub fn new(plane: &Plane, s: &Samples) -> DepthPlane {
         let (w, h) = (s.width as f64, s.height as f64);
         let (a, b, c, d) = (
@@ -313,6 +331,7 @@ impl DepthPlane {
         DepthPlane { zi, zj, z0, err }
     }
 
+    /// The depth at sample (i, j), within `err` of the exact one.
     #[inline]
     pub fn at(&self, i: i64, j: i64) -> f64 {
         self.zi * i as f64 + self.zj * j as f64 + self.z0
@@ -352,7 +371,9 @@ pub fn depth_ndc(p: &Plane, s: &Samples, i: i64, j: i64) -> f64 {
 /// Counts of predicate evaluations the f64 filter could not decide.
 #[derive(Debug, Default)]
 pub struct Fallbacks {
+    /// Edge-against-sample tests decided exactly.
     pub column: Cell<u64>,
+    /// Depth comparisons decided exactly.
     pub depth: Cell<u64>,
 }
 

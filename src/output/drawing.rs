@@ -43,7 +43,9 @@ impl DrawItem {
 /// A whole picture.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Drawing {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
     /// Background colour, or `None` for transparent.
     pub background: Option<[f64; 3]>,
@@ -74,6 +76,7 @@ pub struct Seams {
 }
 
 impl Seams {
+    /// No seam to stroke.
     pub fn is_empty(&self) -> bool {
         self.strokes.is_empty()
     }

@@ -25,7 +25,9 @@ pub use crate::scene::{CameraLights, Light};
 /// towards the viewer; unit length) and its white intensity.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraLight {
+    /// Unit direction towards the light: right, up, towards the viewer.
     pub towards: [f64; 3],
+    /// White intensity.
     pub intensity: f64,
 }
 
@@ -63,6 +65,7 @@ pub struct Lighting {
     /// The camera's lights in world space (the headlight, or the key and the fill), besides
     /// `lights`: kept apart so the common case needs no allocation.
     pub camera_lights: [Option<Light>; 2],
+    /// The lights fixed in the world.
     pub lights: Vec<Light>,
     /// The unit direction towards the viewer when it is the same everywhere (orthographic
     /// cameras); `None`: from each point to the eye (perspective).

@@ -68,13 +68,16 @@ impl Default for Options {
 /// The result of the A-buffer.
 #[derive(Clone, Debug)]
 pub struct ABuffer {
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
     /// Row-major, row 0 at the top: the nearest fragment's polygon (index into
     /// `ScreenScene::polys`), or [`EMPTY`]. The z-buffer's, see the module docs.
     pub poly: Vec<u32>,
     /// Row-major blended colour (linear RGB).
     pub color: Vec<[f64; 3]>,
+    /// Counters of the run.
     pub stats: ABufferStats,
 }
 

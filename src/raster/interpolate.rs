@@ -56,9 +56,11 @@ pub fn blend<const N: usize>(w: [f64; 3], v: [[f64; N]; 3]) -> [f64; N] {
 /// corners it falls in, and its barycentric weights in that triangle (3D, so perspective-correct).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FaceHit {
+    /// The point hit (world space).
     pub point: DVec3,
     /// Positions within the face's corner list of the triangle's corners.
     pub corners: [usize; 3],
+    /// Barycentric weights of those corners at the point, summing to 1.
     pub weights: [f64; 3],
 }
 

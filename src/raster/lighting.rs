@@ -34,10 +34,24 @@ pub const CREASE_DEGREES: f64 = 60.0;
 /// How light is interpolated across a face.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Shading {
+    /// One colour per face: the model at its centroid.
     #[default]
     Flat,
+    /// The model at the corners, interpolated.
     Gouraud,
+    /// The normals interpolated, the model at every pixel.
     Phong,
+}
+
+impl Shading {
+    /// The name the command line gives it (`--shading NAME`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Shading::Flat => "flat",
+            Shading::Gouraud => "gouraud",
+            Shading::Phong => "phong",
+        }
+    }
 }
 
 /// Unit vertex normal at every entry of `scene.corners` (see the module docs for the rule).

@@ -82,6 +82,7 @@ pub fn candidate_rows(s: &Samples, pts: &[GridPoint]) -> (i64, i64) {
 /// The z-buffer's depth order of polygons at samples (see the module docs), with its counters.
 pub struct DepthOrder<'a> {
     screen: &'a ScreenScene,
+    /// The image's pixel centres.
     pub samples: Samples,
     planes: Vec<DepthPlane>,
     /// Comparisons the f64 filter could not decide.
@@ -91,6 +92,7 @@ pub struct DepthOrder<'a> {
 }
 
 impl<'a> DepthOrder<'a> {
+    /// The depth order of `screen`'s polygons, counters at zero.
     pub fn new(screen: &'a ScreenScene) -> DepthOrder<'a> {
         let samples = Samples::new(screen.width, screen.height);
         let planes = screen

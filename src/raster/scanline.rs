@@ -33,10 +33,13 @@ use crate::project::ScreenScene;
 /// (or [`EMPTY`]), as [`ZBuffer::poly`](super::ZBuffer).
 #[derive(Clone, Debug)]
 pub struct Scanline {
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
     /// Row-major, row 0 at the top: index into `ScreenScene::polys`, or [`EMPTY`].
     pub poly: Vec<u32>,
+    /// Counters of the run.
     pub stats: ScanlineStats,
 }
 

@@ -19,14 +19,19 @@ use std::path::Path;
 /// One level of the pyramid: RGB in [0, 1], row-major, row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Level {
+    /// Width in texels.
     pub width: usize,
+    /// Height in texels.
     pub height: usize,
+    /// `width · height` colours.
     pub texels: Vec<[f64; 3]>,
 }
 
 /// A mipmapped texture.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mipmap {
+    /// The full-size image first, then each level half the size of the one before
+    /// (rounded up), down to 1x1.
     pub levels: Vec<Level>,
 }
 
@@ -123,10 +128,12 @@ impl Mipmap {
         Ok(Mipmap::new(w, h, texels))
     }
 
+    /// Width of the full-size image.
     pub fn width(&self) -> usize {
         self.levels[0].width
     }
 
+    /// Height of the full-size image.
     pub fn height(&self) -> usize {
         self.levels[0].height
     }

@@ -24,12 +24,15 @@ pub const EMPTY: u32 = u32::MAX;
 /// [`ScreenPoly`]: crate::project::ScreenPoly
 #[derive(Clone, Debug)]
 pub struct ZBuffer {
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
     /// Row-major, row 0 at the top: index into `ScreenScene::polys`, or [`EMPTY`].
     pub poly: Vec<u32>,
     /// f64 depth (grid units) of the winner; only meaningful where `poly` is not `EMPTY`.
     depth: Vec<f64>,
+    /// Counters of the run.
     pub stats: ZBufferStats,
 }
 

@@ -44,8 +44,11 @@ impl MeshAnalysis {
 /// Camera-independent facts about a scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneAnalysis {
+    /// One per mesh, in the scene's order.
     pub meshes: Vec<MeshAnalysis>,
+    /// Faces whose material is not opaque.
     pub translucent_faces: usize,
+    /// Faces whose material is seen from both sides.
     pub two_sided_faces: usize,
     /// Pairs of meshes whose bounding boxes overlap: they may interpenetrate.
     pub overlapping_mesh_pairs: usize,

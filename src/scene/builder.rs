@@ -19,7 +19,9 @@ pub enum FaceOutcome {
 /// Per-corner attributes of one input polygon, parallel to its corner list.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct CornerAttrs<'a> {
+    /// The file's normal at each corner, if it gives them.
     pub normals: Option<&'a [DVec3]>,
+    /// The file's texture coordinates at each corner, if it gives them.
     pub uvs: Option<&'a [[f64; 2]]>,
 }
 
@@ -34,6 +36,7 @@ pub struct SceneBuilder {
 }
 
 impl SceneBuilder {
+    /// An empty scene read from `source` (a name for messages).
     pub fn new(source: &str) -> Self {
         SceneBuilder {
             scene: Scene {
@@ -90,23 +93,28 @@ impl SceneBuilder {
         (self.scene.positions.len() - 1) as u32
     }
 
+    /// How many vertices were added.
     pub fn vertex_count(&self) -> usize {
         self.scene.positions.len()
     }
 
+    /// The position of vertex `v`.
     pub fn position(&self, v: u32) -> DVec3 {
         self.scene.positions[v as usize]
     }
 
     /// Number of input faces so far (the id the next face will get).
+    /// The id the next input face gets.
     pub fn next_face_id(&self) -> FaceId {
         self.scene.input_faces
     }
 
+    /// Records a warning (see [`LoadStats::warnings`](super::LoadStats::warnings)).
     pub fn warn(&mut self, message: impl Into<String>) {
         self.scene.stats.warnings.push(message.into());
     }
 
+    /// Sets the scene's own camera.
     pub fn set_viewpoint(&mut self, viewpoint: Viewpoint) {
         self.scene.viewpoint = Some(viewpoint);
     }

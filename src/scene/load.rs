@@ -12,9 +12,13 @@ use std::path::Path;
 /// An input format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Format {
+    /// Wavefront OBJ (with its MTL materials).
     Obj,
+    /// STL, ASCII or binary.
     Stl,
+    /// PLY, ASCII or binary.
     Ply,
+    /// X3D (XML encoding).
     X3d,
 }
 

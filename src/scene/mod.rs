@@ -34,6 +34,7 @@ pub type FaceId = u32;
 /// Surface appearance of a face.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
+    /// Its name in the file (OBJ `usemtl`), for messages.
     pub name: String,
     /// Lit color (linear RGB in \[0,1\]), scaled by ambient + Lambert terms when shading.
     pub diffuse: [f64; 3],
@@ -68,6 +69,7 @@ pub struct Face {
     pub material: u32,
     /// Range into [`Scene::corners`].
     pub start: u32,
+    /// Number of corners (at least 3).
     pub len: u32,
 }
 
@@ -75,6 +77,8 @@ pub struct Face {
 /// Closedness and orientation are decided per mesh.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Mesh {
+    /// Its name for messages and `sightline info`: the OBJ object's, or one made from the file
+    /// name or the node.
     pub name: String,
     /// Range into [`Scene::faces`].
     pub faces: Range<usize>,
@@ -83,9 +87,11 @@ pub struct Mesh {
 /// A camera stored in the input file (X3D Viewpoint).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Viewpoint {
+    /// Where the eye is (world space).
     pub position: DVec3,
     /// Rotation of the default view (looking down -z, y up), as a unit axis and an angle in radians.
     pub orientation_axis: DVec3,
+    /// The angle of that rotation, radians.
     pub orientation_angle: f64,
     /// X3D fieldOfView: the smaller of the horizontal and vertical angles, radians.
     pub field_of_view: f64,
@@ -99,6 +105,8 @@ pub struct LoadStats {
     pub degenerate_dropped: usize,
     /// Input polygons that were not exactly planar and were triangulated.
     pub nonplanar_triangulated: usize,
+    /// What the loader skipped or did not understand, one message each (most name the file and
+    /// line).
     pub warnings: Vec<String>,
 }
 
@@ -107,15 +115,21 @@ pub struct LoadStats {
 pub struct Scene {
     /// Name of the source, for messages.
     pub source: String,
+    /// Vertex positions (world space), shared by the faces.
     pub positions: Vec<DVec3>,
+    /// The planar faces (see the module docs for the invariants).
     pub faces: Vec<Face>,
     /// Vertex indices of all faces, face after face; counter-clockwise seen from the front.
     pub corners: Vec<u32>,
+    /// The meshes, each a range of `faces`.
     pub meshes: Vec<Mesh>,
+    /// The materials faces refer to by index.
     pub materials: Vec<Material>,
+    /// The file's own camera (X3D Viewpoint), if any.
     pub viewpoint: Option<Viewpoint>,
     /// Number of input faces: ids are in `0..input_faces`.
     pub input_faces: u32,
+    /// What loading dropped, triangulated or warned about.
     pub stats: LoadStats,
     /// Normals the file gives per face corner (OBJ `vn`, X3D `Normal`), parallel to `corners`;
     /// empty when the file gives none at all, `None` at the corners of faces that have none.
@@ -141,12 +155,16 @@ pub struct Scene {
 pub enum Light {
     /// At infinity; `direction` is where its light travels (need not be unit).
     Directional {
+        /// Where the light travels.
         direction: DVec3,
+        /// RGB intensity.
         intensity: [f64; 3],
     },
     /// At a point, no attenuation (seed 004's simple model).
     Point {
+        /// Where the light is (world space).
         position: DVec3,
+        /// RGB intensity.
         intensity: [f64; 3],
     },
 }
@@ -179,13 +197,48 @@ pub struct SceneLights {
     pub shininess: f64,
 }
 
+/// The Phong exponent n when none is given.
+pub const DEFAULT_SHININESS: f64 = 32.0;
+
 impl Default for SceneLights {
     fn default() -> Self {
         SceneLights {
             camera: CameraLights::KeyFill,
             lights: Vec::new(),
             specular: 0.0,
-            shininess: 32.0,
+            shininess: DEFAULT_SHININESS,
+        }
+    }
+}
+
+impl SceneLights {
+    /// Checks what a user can get wrong (the messages name the command line's flags): Ks and n
+    /// finite and not negative, and every directional light with a direction.
+    pub fn check(&self) -> Result<(), crate::Error> {
+        let bad = |m: String| Err(crate::Error::Options(m));
+        for (flag, v) in [
+            ("--specular", self.specular),
+            ("--shininess", self.shininess),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return bad(format!("{flag} must be a finite number >= 0, not {v}"));
+            }
+        }
+        let no_direction = |l: &Light| matches!(l, Light::Directional { direction, .. } if *direction == DVec3::ZERO);
+        if self.lights.iter().any(no_direction) {
+            return bad("--light 0,0,0 has no direction".into());
+        }
+        Ok(())
+    }
+}
+
+impl Light {
+    /// A white directional light shining from `from` towards the scene (the command line's
+    /// `--light X,Y,Z`).
+    pub fn white_from(from: DVec3) -> Light {
+        Light::Directional {
+            direction: -from,
+            intensity: [1.0; 3],
         }
     }
 }
@@ -264,4 +317,57 @@ pub fn newell_normal(points: impl Iterator<Item = DVec3>) -> DVec3 {
         n.z += (a.x - b.x) * (a.y + b.y);
     }
     n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lights_check_refuses_negative_terms_and_lights_without_direction() {
+        let check = |l: SceneLights| l.check().err().map(|e| e.to_string());
+        assert_eq!(check(SceneLights::default()), None);
+        let lit = SceneLights {
+            lights: vec![Light::white_from(DVec3::new(1.0, 2.0, 3.0))],
+            specular: 0.5,
+            ..SceneLights::default()
+        };
+        assert_eq!(check(lit), None);
+        let dull = SceneLights {
+            specular: -1.0,
+            ..SceneLights::default()
+        };
+        assert_eq!(
+            check(dull).as_deref(),
+            Some("--specular must be a finite number >= 0, not -1")
+        );
+        let blurred = SceneLights {
+            shininess: f64::NAN,
+            ..SceneLights::default()
+        };
+        assert_eq!(
+            check(blurred).as_deref(),
+            Some("--shininess must be a finite number >= 0, not NaN")
+        );
+        let nowhere = SceneLights {
+            lights: vec![Light::white_from(DVec3::ZERO)],
+            ..SceneLights::default()
+        };
+        assert_eq!(
+            check(nowhere).as_deref(),
+            Some("--light 0,0,0 has no direction")
+        );
+    }
+
+    /// `--light X,Y,Z` names where the light comes from: it travels the other way.
+    #[test]
+    fn a_white_light_from_a_direction_travels_towards_the_scene() {
+        assert_eq!(
+            Light::white_from(DVec3::new(1.0, 0.0, 0.0)),
+            Light::Directional {
+                direction: DVec3::new(-1.0, 0.0, 0.0),
+                intensity: [1.0; 3],
+            }
+        );
+    }
 }

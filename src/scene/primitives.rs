@@ -34,8 +34,11 @@ pub const DEFAULT_RINGS: usize = 16;
 /// Which parts of a Cone or Cylinder to build (X3D `side`, `top`, `bottom`; a Cone has no top).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Parts {
+    /// The curved side.
     pub side: bool,
+    /// The top cap.
     pub top: bool,
+    /// The bottom cap.
     pub bottom: bool,
 }
 
@@ -51,6 +54,7 @@ impl Parts {
 /// A polygon mesh in local coordinates, faces counter-clockwise seen from outside.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Tessellation {
+    /// Vertex positions.
     pub positions: Vec<DVec3>,
     /// Vertex indices of all faces, face after face.
     pub corners: Vec<u32>,

@@ -1,7 +1,7 @@
 //! The product of every object-space strategy: what the camera sees, exactly, before anything is
 //! rounded, merged or coloured (that is [`crate::draw`]'s job).
 //!
-//! Invariants of a [`VisibleSet`] made by an exact strategy ([`super::Strategy::exact`]):
+//! Invariants of a [`VisibleSet`] made by an exact strategy ([`crate::methods::Method::exact`]):
 //! - [`VisibleSet::pieces`] are convex, have pairwise disjoint interiors, each lies in the
 //!   projection of its own screen polygon, and at every point of a piece no opaque polygon is
 //!   nearer. Coplanar overlaps go to the larger face id, then the later polygon: the z-buffer's
