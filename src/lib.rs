@@ -60,10 +60,8 @@ pub mod output;
 pub mod paint;
 pub mod pipeline;
 pub mod progress;
-#[allow(missing_docs)] // documented by the lead (issue 9)
 pub mod project;
 pub mod raster;
 pub mod render;
 pub mod report;
-#[allow(missing_docs)] // documented by the lead (issue 9)
 pub mod visibility;

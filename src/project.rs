@@ -44,8 +44,11 @@ pub struct ScreenPoly {
     pub face: u32,
     /// Provenance: the input face id.
     pub id: FaceId,
+    /// Index of its first corner in `ScreenScene::points` (and `sides`).
     pub start: u32,
+    /// Number of corners.
     pub len: u32,
+    /// Its support plane, through its exact grid corners (`c > 0`).
     pub plane: Plane,
     /// Seen from its front (after un-flipping inside-out meshes).
     pub front: bool,
@@ -54,9 +57,13 @@ pub struct ScreenPoly {
 /// What projection did, counted.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct ProjectStats {
+    /// Faces in the scene.
     pub faces: usize,
+    /// Faces wholly outside one plane of the view frustum, dropped.
     pub frustum_culled: usize,
+    /// Faces cut by the near or far plane or the guard band.
     pub clipped: usize,
+    /// Back faces dropped.
     pub backface_culled: usize,
     /// Faces whose snapped projection has no area (edge-on, or smaller than the grid).
     pub degenerate_after_snap: usize,
@@ -64,6 +71,7 @@ pub struct ProjectStats {
     pub culled_meshes: usize,
     /// Closed meshes not culled because the near plane cuts them.
     pub meshes_cut_by_near: usize,
+    /// Screen polygons made.
     pub visible_polys: usize,
 }
 
@@ -80,7 +88,9 @@ pub enum Side {
 /// The planes faces are clipped by (in homogeneous clip space, before the divide).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum ClipPlane {
+    /// The near plane: where a face comes closer to the eye than the camera's near distance.
     Near,
+    /// The far plane.
     Far,
     /// The guard band around the view: it lies outside the image, so these sides are never
     /// seen.
@@ -90,12 +100,17 @@ pub enum ClipPlane {
 /// All faces of a scene on screen, for one camera.
 #[derive(Clone, Debug, Default)]
 pub struct ScreenScene {
+    /// The polygons, in face order.
     pub polys: Vec<ScreenPoly>,
+    /// Every polygon's corners, one run per polygon.
     pub points: Vec<GridPoint>,
     /// `sides[k]`: where the side from `points[k]` to the next corner of its polygon comes from.
     pub sides: Vec<Side>,
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
+    /// What projection did.
     pub stats: ProjectStats,
 }
 

@@ -36,9 +36,7 @@
 //! bound cannot decide do they fall back to the integer computation. Every fallback is counted
 //! in [`Fallbacks`].
 
-#[allow(missing_docs)] // documented by the lead (issue 9)
 pub mod polygon;
-#[allow(missing_docs)] // documented by the lead (issue 9)
 pub mod predicates;
 
 use bnum::cast::As;

@@ -30,12 +30,25 @@ use std::cmp::Ordering;
 pub enum Boundary {
     /// Along side `side` of polygon `poly`'s outline: from its corner `side` to the next, in the
     /// order of `ScreenScene::corners` (`ScreenScene::sides` tells a face edge from a clip).
-    Outline { poly: u32, side: u32 },
+    Outline {
+        /// The polygon.
+        poly: u32,
+        /// The side: from corner `side` to corner `side + 1` (mod the corner count).
+        side: u32,
+    },
     /// A diagonal of the convex decomposition of polygon `poly`: inside the face, not an edge.
-    Diagonal { poly: u32 },
+    Diagonal {
+        /// The polygon decomposed.
+        poly: u32,
+    },
     /// The projection of the line where the support planes of polygons `a` (the piece's own)
     /// and `b` meet: an intersection of two faces, or where one passes behind the other.
-    Cut { a: u32, b: u32 },
+    Cut {
+        /// The polygon whose piece was split first.
+        a: u32,
+        /// The polygon whose plane split it.
+        b: u32,
+    },
     /// A vertical screen line that a BSP split by to balance its tree: no feature of the scene.
     ScreenSplit,
 }
@@ -47,6 +60,7 @@ pub enum Boundary {
 pub struct Piece {
     /// Index of the screen polygon (face) it belongs to.
     pub poly: u32,
+    /// The support plane of that polygon: every point of the piece lies in it.
     pub support: Plane,
     /// Boundary lines, counter-clockwise; vertex k is where `lines[k-1]` and `lines[k]` cross.
     pub lines: Vec<Line>,
@@ -148,10 +162,12 @@ impl Piece {
         }
     }
 
+    /// The number of lines (and of vertices).
     pub fn len(&self) -> usize {
         self.lines.len()
     }
 
+    /// True for no lines (never the case for a piece made here).
     pub fn is_empty(&self) -> bool {
         self.lines.is_empty()
     }

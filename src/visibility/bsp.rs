@@ -53,6 +53,7 @@ struct Node {
 /// A 3D BSP tree of the pieces of a screen scene.
 pub struct Bsp {
     nodes: Vec<Node>,
+    /// Counters of the build (and of the visible set, once computed).
     pub stats: BspStats,
 }
 

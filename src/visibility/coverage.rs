@@ -61,6 +61,7 @@ pub struct Coverage<'a> {
     /// Per visible piece, the last query that met it (dedupes across buckets).
     seen: Vec<u32>,
     query: u32,
+    /// Counters so far.
     pub stats: CoverageStats,
 }
 
