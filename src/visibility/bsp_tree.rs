@@ -37,13 +37,11 @@ impl Strategy for BspTree {
         } else {
             (Vec::new(), None)
         };
-        let pieces = coverage.into_pieces();
         let mut stats = Stats::new();
         let mut put = |k: &str, v: serde_json::Value| {
             stats.insert(k.to_string(), v);
         };
         let st = &bsp.stats;
-        put("polygons", screen.polys.len().into());
         put(
             "translucent_painter_order",
             translucent_bsp.is_some().into(),
@@ -52,21 +50,11 @@ impl Strategy for BspTree {
         put("fragments", st.fragments.into());
         put("bsp_nodes", st.nodes.into());
         put("bsp_depth", st.depth.into());
-        put("visible_pieces", pieces.len().into());
         if let Some(t) = translucent_bsp {
             put("translucent_pieces", t.pieces.into());
             put("translucent_fragments", t.fragments.into());
             put("translucent_parts", layered.len().into());
         }
-        put(
-            "drawn_pieces_per_polygon",
-            ((pieces.len() + layered.len()) as f64 / screen.polys.len().max(1) as f64).into(),
-        );
-        put("exact_fallbacks", (fallback_count() - fallbacks).into());
-        VisibleSet {
-            pieces,
-            layered,
-            stats,
-        }
+        VisibleSet::exact(screen, coverage.into_pieces(), layered, stats, fallbacks)
     }
 }

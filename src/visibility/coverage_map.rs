@@ -36,7 +36,6 @@ impl Strategy for CoverageMap {
         let mut put = |k: &str, v: serde_json::Value| {
             stats.insert(k.to_string(), v);
         };
-        put("polygons", screen.polys.len().into());
         let layered = translucent_polygons(screen, translucent);
         put("translucent_painter_order", layered.into());
         let (pieces, layered) = if layered {
@@ -46,32 +45,19 @@ impl Strategy for CoverageMap {
             let mut coverage = coverage_of(screen, opaque, report);
             let (layered, bsp) = translucent_layer(screen, &mut coverage, see_through, report);
             put("pieces", (coverage.stats.inserted + bsp.pieces).into());
-            let pieces = coverage.into_pieces();
-            put("visible_pieces", pieces.len().into());
             put("fragments", bsp.fragments.into());
             put("bsp_nodes", bsp.nodes.into());
             put("bsp_depth", bsp.depth.into());
             put("translucent_parts", layered.len().into());
-            (pieces, layered)
+            (coverage.into_pieces(), layered)
         } else {
             let (visible, cs) = visible_set_with_progress(screen, report);
             put("pieces", cs.inserted.into());
-            put("visible_pieces", visible.pieces.len().into());
             put("replaced", cs.replaced.into());
             put("overlap_tests", cs.overlap_tests.into());
             (visible.pieces, Vec::new())
         };
-        // Visible opaque pieces and translucent parts: what is drawn, per polygon.
-        put(
-            "drawn_pieces_per_polygon",
-            ((pieces.len() + layered.len()) as f64 / screen.polys.len().max(1) as f64).into(),
-        );
-        put("exact_fallbacks", (fallback_count() - fallbacks).into());
-        VisibleSet {
-            pieces,
-            layered,
-            stats,
-        }
+        VisibleSet::exact(screen, pieces, layered, stats, fallbacks)
     }
 }
 

@@ -75,6 +75,34 @@ impl VisibleSet {
         }
     }
 
+    /// An exact strategy's result: `pieces` and `layered` with the strategy's own counters
+    /// `stats`, plus the ones every exact strategy reports: "polygons", "visible_pieces", "drawn_pieces_per_polygon" (pieces and layered fragments, per polygon)
+    /// and "exact_fallbacks" (kernel fallbacks since the count was `fallbacks_before`).
+    pub(crate) fn exact(
+        screen: &ScreenScene,
+        pieces: Vec<Piece>,
+        layered: Vec<Fragment>,
+        mut stats: Stats,
+        fallbacks_before: u64,
+    ) -> Self {
+        let polygons = screen.polys.len();
+        let drawn = (pieces.len() + layered.len()) as f64 / polygons.max(1) as f64;
+        let fallbacks = crate::exact::predicates::fallback_count() - fallbacks_before;
+        for (k, v) in [
+            ("polygons", polygons.into()),
+            ("visible_pieces", pieces.len().into()),
+            ("drawn_pieces_per_polygon", drawn.into()),
+            ("exact_fallbacks", fallbacks.into()),
+        ] {
+            stats.insert(k.into(), v);
+        }
+        VisibleSet {
+            pieces,
+            layered,
+            stats,
+        }
+    }
+
     /// The face id of the [`Self::pieces`] at every pixel centre (row-major, row 0 at the top),
     /// decided exactly: a sample on a boundary between pieces goes to the earlier piece.
     pub fn face_ids(&self, screen: &ScreenScene) -> Vec<Option<u32>> {
