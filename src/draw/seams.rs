@@ -174,10 +174,10 @@ mod tests {
             c: 1,
             d: 0,
         };
-        let sides: Vec<Boundary> = (0..gp.len() as u32)
-            .map(|side| Boundary::Outline { poly, side })
-            .collect();
-        Piece::from_convex(poly, support, &gp, &sides)
+        Piece::from_convex(poly, support, &gp, |side| Boundary::Outline {
+            poly,
+            side: side as u32,
+        })
     }
 
     /// The shared segments as (pieces, ends in grid units, ends sorted).

@@ -83,6 +83,15 @@ pub struct Piece {
     pub(crate) line_approx: Vec<LineApprox>,
 }
 
+/// `all[k]` for each k of `run`, then `closing`: a part's per-line array, allocated once at its
+/// final size.
+fn kept_then<T: Copy>(run: &[usize], all: &[T], closing: T) -> Vec<T> {
+    let mut v = Vec::with_capacity(run.len() + 1);
+    v.extend(run.iter().map(|&k| all[k]));
+    v.push(closing);
+    v
+}
+
 /// Where a piece lies relative to a plane or a line.
 #[derive(Clone, Debug, PartialEq)]
 #[allow(clippy::large_enum_variant)] // returned once per split and taken apart at once
@@ -98,7 +107,7 @@ pub enum Split {
 }
 
 impl Piece {
-    /// The piece of a convex grid polygon (counter-clockwise, y up) in `support`; `sides[k]` is
+    /// The piece of a convex grid polygon (counter-clockwise, y up) in `support`; `side(k)` is
     /// where its side from corner k to corner k + 1 comes from. Straight corners (a corner on the
     /// line through its neighbours, as T-junction vertices are) are dropped: two adjacent lines
     /// of a piece must cross. The merged line keeps the boundary of its first side.
@@ -106,22 +115,23 @@ impl Piece {
         poly: u32,
         support: Plane,
         corners: &[GridPoint],
-        sides: &[Boundary],
+        side: impl Fn(usize) -> Boundary,
     ) -> Piece {
         use super::predicates::orient2d;
         let m = corners.len();
-        assert_eq!(sides.len(), m, "one boundary per side");
-        let kept: Vec<usize> = (0..m)
-            .filter(|&k| {
-                orient2d(corners[(k + m - 1) % m], corners[k], corners[(k + 1) % m])
-                    != Ordering::Equal
-            })
-            .collect();
         // A dropped corner joins the side before it to the side after: the line keeps the
         // boundary of the side that starts at the kept corner before it.
-        let boundaries: Vec<Boundary> = kept.iter().map(|&k| sides[k]).collect();
-        let corners: Vec<GridPoint> = kept.iter().map(|&k| corners[k]).collect();
-        let corners = &corners[..];
+        let mut kept = Vec::with_capacity(m);
+        let mut boundaries = Vec::with_capacity(m);
+        for k in 0..m {
+            if orient2d(corners[(k + m - 1) % m], corners[k], corners[(k + 1) % m])
+                != Ordering::Equal
+            {
+                kept.push(corners[k]);
+                boundaries.push(side(k));
+            }
+        }
+        let corners = &kept[..];
         let n = corners.len();
         let lines: Vec<Line> = (0..n)
             .map(|k| {
@@ -444,15 +454,10 @@ impl Piece {
             }
         };
         let last = (run[run.len() - 1] + 1) % n;
-        let mut lines: Vec<Line> = run.iter().map(|&k| self.lines[k]).collect();
-        lines.push(closing);
-        let mut boundaries: Vec<Boundary> = run.iter().map(|&k| self.boundaries[k]).collect();
-        boundaries.push(origin);
-        let mut line_approx: Vec<LineApprox> = run.iter().map(|&k| self.line_approx[k]).collect();
-        line_approx.push(closing.approx());
-        let mut segments: Vec<Option<[[i32; 2]; 2]>> =
-            run.iter().map(|&k| self.segments[k]).collect();
-        segments.push(None);
+        let lines = kept_then(&run, &self.lines, closing);
+        let boundaries = kept_then(&run, &self.boundaries, origin);
+        let line_approx = kept_then(&run, &self.line_approx, closing.approx());
+        let segments = kept_then(&run, &self.segments, None);
         // Vertex 0 joins the closing line and the first kept edge; vertex i joins kept edges
         // i-1 and i; the last joins the last kept edge and the closing line.
         let mut corners = Vec::with_capacity(lines.len());
@@ -737,10 +742,10 @@ mod tests {
     fn square() -> Piece {
         let c = [gp(0, 0, 0), gp(100, 0, 0), gp(100, 100, 0), gp(0, 100, 0)];
         let support = Plane::through(c[0], c[1], c[2]).unwrap();
-        let sides: Vec<Boundary> = (0..4)
-            .map(|side| Boundary::Outline { poly: 0, side })
-            .collect();
-        Piece::from_convex(0, support, &c, &sides)
+        Piece::from_convex(0, support, &c, |side| Boundary::Outline {
+            poly: 0,
+            side: side as u32,
+        })
     }
 
     #[test]

@@ -69,24 +69,30 @@ pub fn initial_pieces(screen: &ScreenScene) -> Vec<Piece> {
         } else {
             pts.to_vec()
         };
-        let outline_side = |k: usize| if reversed { (2 * n - 2 - k) % n } else { k } as u32;
-        for piece in convex_piece_indices(&ccw) {
+        let outline = |k: usize| Boundary::Outline {
+            poly,
+            side: if reversed { (2 * n - 2 - k) % n } else { k } as u32,
+        };
+        let pieces = convex_piece_indices(&ccw);
+        if let [whole] = &pieces[..]
+            && whole.len() == n
+        {
+            // Convex (the common case): the polygon itself, every side an outline side.
+            out.push(Piece::from_convex(poly, p.plane, &ccw, outline));
+            continue;
+        }
+        for piece in pieces {
             let m = piece.len();
             let corners: Vec<GridPoint> = piece.iter().map(|&v| ccw[v]).collect();
-            let sides: Vec<Boundary> = (0..m)
-                .map(|k| {
-                    let (a, b) = (piece[k], piece[(k + 1) % m]);
-                    if b == (a + 1) % n {
-                        Boundary::Outline {
-                            poly,
-                            side: outline_side(a),
-                        }
-                    } else {
-                        Boundary::Diagonal { poly }
-                    }
-                })
-                .collect();
-            out.push(Piece::from_convex(poly, p.plane, &corners, &sides));
+            let side = |k: usize| {
+                let (a, b) = (piece[k], piece[(k + 1) % m]);
+                if b == (a + 1) % n {
+                    outline(a)
+                } else {
+                    Boundary::Diagonal { poly }
+                }
+            };
+            out.push(Piece::from_convex(poly, p.plane, &corners, side));
         }
     }
     out
