@@ -1,10 +1,10 @@
-//! The exact visible set (`render --method bsp` on an opaque scene: projection, culling and the
+//! The exact visible set (`render --method coverage` on an opaque scene: projection, culling and the
 //! depth-aware coverage map) at 1024x1024 on generated spheres of 1k, 10k, 100k and 1M
 //! triangles, interlocked and interpenetrating tori, random triangle soups of 100 and 1,000, and
 //! the meshes of `../shared/meshes` with their cameras when that directory is present. Before
 //! each benchmark one line on stderr gives its visible pieces per polygon and exact fallbacks.
 //! The 10,000-triangle soup takes minutes a run: time it with
-//! `sightline bench --soup 10000 --method bsp --repeat 1`.
+//! `sightline bench --soup 10000 --method coverage --repeat 1`.
 //!
 //! `cargo bench --bench bsp`; `cargo bench --bench bsp -- soup` for the soups only.
 
@@ -23,7 +23,7 @@ use sightline::visibility::coverage_map::visible_set;
 use std::hint::black_box;
 use std::time::Duration;
 
-/// Projection, culling and the exact visible set: what `render --method bsp` computes before
+/// Projection, culling and the exact visible set: what `render --method coverage` computes before
 /// drawing. Returns the visible piece count.
 fn run(scene: &Scene, cam: &Camera) -> usize {
     let prepared = prepare(scene, cam, CullMode::Auto);

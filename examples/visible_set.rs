@@ -3,7 +3,8 @@
 //! opaque), seen from the front.
 //!
 //! `cargo run --release --example visible_set -- [INPUT] [METHOD]` (defaults:
-//! `fixtures/cyclic_bars.obj`, `coverage`; `bsp` and `painter` are the other strategies).
+//! `fixtures/cyclic_bars.obj`, `coverage`; `bsp` is the other exact strategy; the approximate
+//! `painter` only orders whole faces and has no visible pieces).
 
 use sightline::camera::NamedView;
 use sightline::methods::{self, Engine};
@@ -16,9 +17,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let input = args.next().unwrap_or("fixtures/cyclic_bars.obj".into());
     let name = args.next().unwrap_or("coverage".into());
-    let Some(Engine::Object(strategy)) = methods::method(&name).map(|m| m.engine) else {
-        let strategies = methods::names_with(|m| !m.is_image_space());
-        eprintln!("{name} is not an object-space method: use {strategies}");
+    let exact_strategy = |m: &methods::Method| m.exact && !m.is_image_space();
+    let Some(Engine::Object(strategy)) = methods::method(&name)
+        .filter(|m| exact_strategy(m))
+        .map(|m| m.engine)
+    else {
+        let strategies = methods::names_with(exact_strategy);
+        eprintln!("{name} computes no exact visible pieces: use {strategies}");
         std::process::exit(2);
     };
 

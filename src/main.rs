@@ -74,7 +74,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Render a scene: PNG by an image-space method (the z-buffer is the reference), or exact
-    /// visible polygons as SVG, JSON or PNG (--method coverage).
+    /// visible polygons as SVG, JSON or PNG.
     #[command(after_help = EXAMPLES)]
     Render(RenderArgs),
     /// Describe a scene: counts, closedness, bounds, culling, and which stages it needs.
@@ -189,13 +189,16 @@ struct RenderArgs {
     /// Output file (.png, .svg or .json), or - for standard output.
     #[arg(short, long, value_name = "OUT")]
     output: PathBuf,
-    /// Output format (default: from the output's extension; for -, PNG unless --method is
-    /// coverage, bsp or painter, then SVG).
-    #[arg(long, value_enum)]
+    #[arg(long, value_enum, help = format!(
+        "Output format (default: from the output's extension; for -, PNG unless --method is {}, then SVG)",
+        methods::names_with(|m| !m.is_image_space())
+    ))]
     to: Option<OutputFormat>,
-    /// Rendering method (default: coverage, the exact visible set, for SVG and JSON; zbuffer for
-    /// PNG).
-    #[arg(long, value_parser = method_arg())]
+    #[arg(long, value_parser = method_arg(), help = format!(
+        "Rendering method (default: {} for SVG and JSON, {} for PNG)",
+        methods::default_for(Output::Svg).name,
+        methods::default_for(Output::Png).name
+    ))]
     method: Option<&'static Method>,
     /// Outline every region in SVG output (black, 0.5 px). SVG only.
     #[arg(long)]
@@ -240,9 +243,10 @@ struct RenderArgs {
     /// Phong exponent n of the highlight.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_SHININESS, allow_negative_numbers = true)]
     shininess: f64,
-    /// How light varies across a face in image-space output (zbuffer, scanline, warnock):
-    /// flat (one colour per face), gouraud (corners, interpolated) or phong (per pixel).
-    #[arg(long, value_enum, default_value_t = ShadingArg::Flat)]
+    #[arg(long, value_enum, default_value_t = ShadingArg::Flat, help = format!(
+        "How light varies across a face in image-space output ({}): flat (one colour per face), gouraud (corners, interpolated) or phong (per pixel)",
+        methods::names_with(|m| m.shading)
+    ))]
     shading: ShadingArg,
     /// Print timings and counters to stderr (never into the output, whose bytes depend only on
     /// the input and the flags).

@@ -359,6 +359,14 @@ pub fn render(
     // Pixels always have a background (`--background none` is refused for PNG).
     let background_rgb = background.unwrap_or([255; 3]);
     let paints = screen_paints(scene, screen, camera, fill);
+    let translucent = paints.iter().filter(|p| !p.is_opaque()).count();
+    if translucent > 0 && !method.blends {
+        warnings.push(format!(
+            "--method {} draws translucent faces as opaque ({translucent} on screen): use --method {} to blend them",
+            method.name,
+            names_with(|m| m.blends)
+        ));
+    }
     let raster_options = RasterOptions {
         paints: &paints,
         background: match fill {
@@ -460,7 +468,14 @@ mod tests {
         .unwrap();
         let prepared = prepare(scene, &camera, CullMode::Auto);
         let rendered = render(scene, &camera, &prepared.screen, options, None).unwrap();
-        assert!(rendered.warnings.is_empty(), "{:?}", rendered.warnings);
+        // The z-buffer's renders of translucent scenes warn that they draw them opaque; nothing
+        // else warns.
+        let opaque_drawing = |w: &String| w.contains("draws translucent faces as opaque");
+        assert!(
+            rendered.warnings.iter().all(opaque_drawing),
+            "{:?}",
+            rendered.warnings
+        );
         let mut bytes = Vec::new();
         rendered.write(&mut bytes).unwrap();
         bytes

@@ -1,5 +1,5 @@
 //! The exact visible set against the z-buffer: the same face id at every interior pixel, by both
-//! exact paths (the coverage map `--method bsp` draws, and the BSP walk); and every comparison
+//! exact paths (the coverage map `--method coverage` draws, and the BSP walk); and every comparison
 //! compared covered pixels, so that a scene or camera that shows nothing cannot pass.
 
 mod support;

@@ -1090,3 +1090,32 @@ fn progress_bars_are_labelled_on_a_terminal() {
     }
     assert!(std::fs::read_to_string(&out).unwrap().contains("<path"));
 }
+
+/// A method that draws translucent faces as opaque says so, and names the methods that blend
+/// (from the registry); a method that blends, or `--fill id`, says nothing.
+#[test]
+fn translucent_faces_drawn_opaque_are_warned_about() {
+    let out = tmp("glass.png");
+    let out = out.to_str().unwrap();
+    let stderr = |flags: &[&str]| {
+        let mut args = vec![
+            "render",
+            "fixtures/tinted_glass.obj",
+            "--size",
+            "32x24",
+            "-o",
+            out,
+        ];
+        args.extend_from_slice(flags);
+        String::from_utf8(run_ok(&args).stderr).unwrap()
+    };
+    let warned = stderr(&["--method", "zbuffer"]);
+    assert!(
+        warned.contains("--method zbuffer draws translucent faces as opaque (1 on screen)")
+            && warned.contains("abuffer, coverage, bsp or painter"),
+        "{warned}"
+    );
+    assert_eq!(stderr(&["--method", "abuffer"]), "");
+    assert_eq!(stderr(&["--method", "coverage"]), "");
+    assert_eq!(stderr(&["--method", "zbuffer", "--fill", "id"]), "");
+}

@@ -224,3 +224,76 @@ fn sides_of_screen_polygons_name_face_edges_and_clip_planes() {
     assert_eq!(tri, &[Side::Edge(0), Side::Edge(1), Side::Edge(2)]);
     check_scene(&scene, &camera);
 }
+
+/// A face whose outline has straight corners (T-junction vertices) and a notch: its convex
+/// decomposition must not merge pieces so that a diagonal runs on from an outline side (the
+/// piece would drop the straight corner between them and name the whole line an outline side).
+/// Every outline-labelled side of every piece lies within the run of collinear outline sides
+/// its boundary names.
+#[test]
+fn outline_sides_do_not_run_on_into_diagonals() {
+    let mut b = SceneBuilder::new("notched");
+    let m = b.add_material(Material::default());
+    b.begin_mesh("notched");
+    let pts = [
+        [0.0, 0.0],
+        [1.0, 0.0],
+        [2.0, 0.0],
+        [3.0, 0.0],
+        [4.0, 0.0],
+        [4.0, 3.0],
+        [3.0, 3.0],
+        [3.0, 1.0],
+        [2.0, 1.0],
+        [2.0, 2.0],
+        [1.0, 2.0],
+        [0.0, 2.0],
+    ];
+    let v: Vec<u32> = pts
+        .iter()
+        .map(|&[x, y]| b.add_vertex(DVec3::new(x, y, 0.0)))
+        .collect();
+    b.add_face(&v, m);
+    let scene = b.finish().unwrap();
+    let camera = Camera {
+        eye: DVec3::new(2.0, 1.5, 5.0),
+        target: DVec3::new(2.0, 1.5, 0.0),
+        up: DVec3::Y,
+        projection: Projection::Orthographic { height: 4.0 },
+        near: 1.0,
+        far: 10.0,
+        width: 64,
+        height: 64,
+    };
+    let screen = prepare(&scene, &camera, CullMode::Off).screen;
+    let c = screen.corners(&screen.polys[0]);
+    let n = c.len();
+    let visible = CoverageMap.visible_set(&screen, &|_| false, None);
+    let mut outline_sides = 0;
+    for piece in &visible.pieces {
+        let m = piece.len();
+        for k in 0..m {
+            let Boundary::Outline { side, .. } = piece.boundaries[k] else {
+                continue;
+            };
+            outline_sides += 1;
+            // The run of collinear sides from `side`: its corners, first to last.
+            let side = side as usize;
+            let mut last = (side + 1) % n;
+            while sightline::exact::predicates::orient2d(c[side], c[last], c[(last + 1) % n])
+                == std::cmp::Ordering::Equal
+            {
+                last = (last + 1) % n;
+            }
+            let (p, q) = (c[side], c[last]);
+            // The piece side runs from vertex k to vertex k + 1 (grid corners here: one face).
+            for end in [piece.corners[k], piece.corners[(k + 1) % m]] {
+                let [x, y] = end.expect("a lone face's piece has grid corners");
+                let within = (p.x.min(q.x)..=p.x.max(q.x)).contains(&x)
+                    && (p.y.min(q.y)..=p.y.max(q.y)).contains(&y);
+                assert!(within, "side {side}: end ({x}, {y}) is off {p:?} -> {q:?}");
+            }
+        }
+    }
+    assert!(outline_sides >= 6, "{outline_sides}");
+}

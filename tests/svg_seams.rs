@@ -21,7 +21,7 @@ use support::fixtures::fixture;
 use support::seam_measure::{alpha_area, over_white, rasterize, rings_area, seam_defects};
 use support::strategy::{exact_drawing, exact_picture};
 
-/// The picture as `render --method bsp -o X.svg` draws it, and the exact opaque visible area
+/// The picture as `render --method coverage -o X.svg` draws it, and the exact opaque visible area
 /// (the per-face drawing, as the JSON holds it).
 fn picture_and_exact_area(scene: &Scene, camera: &Camera) -> (Drawing, f64) {
     let screen = prepare(scene, camera, CullMode::Auto).screen;

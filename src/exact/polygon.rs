@@ -26,10 +26,18 @@ use super::{GridPoint, Plane};
 use std::cmp::Ordering;
 
 /// Where a line of a piece comes from. Polygons are indices into `ScreenScene::polys`.
+///
+/// A boundary names the line a side of a piece lies on, not the extent of that side: a piece
+/// cut by an occluder (the coverage map subtracts convex pieces line by line) inherits the
+/// occluder's lines, boundaries included, and its side along such a line may reach past the
+/// occluder's own side, between two visible parts of the same face. Whether a piece side is a
+/// contour of the picture is a question of what lies on its two sides, for the consumer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Boundary {
-    /// Along side `side` of polygon `poly`'s outline: from its corner `side` to the next, in the
-    /// order of `ScreenScene::corners` (`ScreenScene::sides` tells a face edge from a clip).
+    /// Along the outline of polygon `poly`, starting with its side `side` (from corner `side`
+    /// to the next, in the order of `ScreenScene::corners`; `ScreenScene::sides` tells a face
+    /// edge from a clip). Where the polygon has straight corners (T-junction vertices), the line
+    /// runs on along the following collinear sides.
     Outline {
         /// The polygon.
         poly: u32,
@@ -41,10 +49,12 @@ pub enum Boundary {
         /// The polygon decomposed.
         poly: u32,
     },
-    /// The projection of the line where the support planes of polygons `a` (the piece's own)
-    /// and `b` meet: an intersection of two faces, or where one passes behind the other.
+    /// The projection of the line where the support planes of polygons `a` and `b` meet: an
+    /// intersection of two faces, or where one passes behind the other. `a` is the polygon
+    /// whose piece was split, `b` the one whose plane split it; a piece may inherit the cut
+    /// from an occluder, so neither need be the piece's own polygon.
     Cut {
-        /// The polygon whose piece was split first.
+        /// The polygon whose piece was split.
         a: u32,
         /// The polygon whose plane split it.
         b: u32,
@@ -676,7 +686,7 @@ pub fn convex_piece_indices(points: &[GridPoint]) -> Vec<Vec<usize>> {
             for j in i + 1..pieces.len() {
                 if let Some(u) = merge_along_shared_edge(&pieces[i], &pieces[j]) {
                     let ring: Vec<GridPoint> = u.iter().map(|&v| points[v]).collect();
-                    if convex(&ring) {
+                    if convex(&ring) && straight_only_along_the_outline(&u, &ring, n) {
                         pieces[i] = u;
                         pieces.swap_remove(j);
                         merged = true;
@@ -690,6 +700,21 @@ pub fn convex_piece_indices(points: &[GridPoint]) -> Vec<Vec<usize>> {
 }
 
 /// The union ring of two index rings sharing exactly one edge (a→b in one, b→a in the other).
+/// Does the piece `u` (indices into a polygon of `n` corners, at `ring`) have a straight corner
+/// only where two sides of the polygon's outline run on? A piece drops its straight corners, and
+/// its line then takes the boundary of the side before: a diagonal running on from an outline
+/// side (or the other way) would be mislabelled, so such merges are not made.
+fn straight_only_along_the_outline(u: &[usize], ring: &[GridPoint], n: usize) -> bool {
+    use super::predicates::orient2d;
+    let m = u.len();
+    let outline = |a: usize, b: usize| b == (a + 1) % n;
+    (0..m).all(|k| {
+        let (a, b, c) = ((k + m - 1) % m, k, (k + 1) % m);
+        orient2d(ring[a], ring[b], ring[c]) != Ordering::Equal
+            || (outline(u[a], u[b]) && outline(u[b], u[c]))
+    })
+}
+
 fn merge_along_shared_edge(p: &[usize], q: &[usize]) -> Option<Vec<usize>> {
     let (np, nq) = (p.len(), q.len());
     for i in 0..np {

@@ -59,19 +59,9 @@ impl Paint {
     }
 }
 
-/// The paint every method gives `scene.faces[face]`: its flat colour and its material's opacity,
-/// or with `Fill::Id` its id label, opaque (blending labels would show ids that do not exist).
-pub fn face_paint(scene: &Scene, face: usize, camera: &Camera, fill: Fill) -> Paint {
-    paint_with(
-        &Lighting::of_scene(scene, camera),
-        scene,
-        face,
-        camera,
-        fill,
-    )
-}
-
-/// Each screen polygon's paint ([`face_paint`] of its face), the lights set up once.
+/// Each screen polygon's paint: its face's flat colour and its material's opacity, or with
+/// `Fill::Id` its id label, opaque (blending labels would show ids that do not exist). The
+/// lights are set up once.
 pub fn screen_paints(
     scene: &Scene,
     screen: &ScreenScene,
@@ -97,10 +87,7 @@ fn paint_with(
     match fill {
         Fill::Shade => Paint {
             color: lighting.flat_color(scene, f, camera.eye),
-            opacity: 1.0
-                - scene.materials[f.material as usize]
-                    .transparency
-                    .clamp(0.0, 1.0),
+            opacity: scene.materials[f.material as usize].opacity(),
         },
         Fill::Id => Paint {
             color: id_color(f.id).map(|c| c as f64 / 255.0),

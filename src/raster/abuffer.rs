@@ -38,18 +38,9 @@
 
 use super::EMPTY;
 use super::sample::{self, DepthOrder};
-use crate::camera::Camera;
 use crate::exact::Fallbacks;
-use crate::paint::Fill;
+use crate::paint::Paint;
 use crate::project::ScreenScene;
-use crate::scene::Scene;
-
-pub use crate::paint::Paint;
-
-/// Each screen polygon's paint (see [`crate::paint::screen_paints`]).
-pub fn paints(scene: &Scene, screen: &ScreenScene, camera: &Camera, fill: Fill) -> Vec<Paint> {
-    crate::paint::screen_paints(scene, screen, camera, fill)
-}
 
 /// In which order polygons are rasterized. The image does not depend on it; memory does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -218,7 +209,7 @@ impl Pixels<'_> {
 }
 
 /// Renders `screen` into an A-buffer. `paints[k]` is the paint of `screen.polys[k]` (see
-/// [`paints`]); `background` is the colour blending starts from.
+/// [`crate::paint::screen_paints`]); `background` is the colour blending starts from.
 pub fn render(
     screen: &ScreenScene,
     paints: &[Paint],

@@ -95,7 +95,7 @@ pub fn analyse(scene: &Scene) -> SceneAnalysis {
         translucent_faces: scene
             .faces
             .iter()
-            .filter(|f| material(f).transparency > 0.0)
+            .filter(|f| material(f).opacity() < 1.0)
             .count(),
         two_sided_faces: scene.faces.iter().filter(|f| material(f).two_sided).count(),
         overlapping_mesh_pairs,

@@ -46,6 +46,14 @@ pub struct Material {
     pub two_sided: bool,
 }
 
+impl Material {
+    /// `1 - transparency`, clamped to \[0, 1\]: the one opacity every method blends with
+    /// (below 1 the material blends over what lies behind it).
+    pub fn opacity(&self) -> f64 {
+        1.0 - self.transparency.clamp(0.0, 1.0)
+    }
+}
+
 impl Default for Material {
     fn default() -> Self {
         Material {

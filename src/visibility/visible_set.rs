@@ -11,8 +11,10 @@
 //!   faces that no opaque face hides, in an exact depth order, so each blends over exactly what
 //!   lies behind it.
 //!
-//! An approximate strategy (the painter) keeps the shape of the result, not its guarantees: its
-//! fragments are whole polygons in its own order, possibly overlapping.
+//! Every strategy, exact or not, keeps `pieces` pairwise disjoint: the drawing stage relies on it
+//! (it may reorder their regions). An approximate strategy (the painter) keeps the shape of the
+//! result, not its guarantees: its fragments are whole polygons in `layered`, in its own order,
+//! possibly overlapping.
 //!
 //! Where a boundary comes from: every side of a piece is a kernel [`Line`] (never rounded here;
 //! vertices are implicit, where two lines cross) with its [`Boundary`]: a side of a screen
@@ -20,8 +22,12 @@
 //! near or far plane), a diagonal of a non-convex face's decomposition (inside the face), the
 //! meeting of two polygons' support planes (an intersection line, or where one face passes
 //! behind another: the cut is stored as the two polygons, whose planes are the table), or a
-//! screen line the BSP chose (no feature of the scene). Hidden-line drawings read them:
-//! a visible edge is an outline side that is a face edge, seen.
+//! screen line the BSP chose (no feature of the scene). A boundary names a line, not a segment:
+//! pieces inherit the lines of what they were cut by, so a piece side may run past the side it
+//! names, and two pieces of one face may abut along an occluder's line. A hidden-line drawing
+//! reads the boundaries of the piece sides that separate different faces (or a face from the
+//! background). Faces that the loader triangulated (non-planar input polygons) keep their input
+//! id: a side between two of them is no edge of the input.
 //!
 //! [`Boundary`]: crate::exact::polygon::Boundary
 

@@ -10,7 +10,7 @@
 //! - [`properties`]: the six properties and their runner;
 //! - [`regressions`]: cases the properties once failed, each named after the behaviour it keeps.
 //!
-//! The set checked is the one `--method bsp` draws for opaque scenes (the depth-aware coverage
+//! The set checked is the one `--method coverage` draws for opaque scenes (the depth-aware coverage
 //! map); property 6 holds the BSP walk's set against it.
 //!
 //! Normal run (2,000 cases per property, 12,000 in all; a fixed RNG seed per property unless
