@@ -1,19 +1,22 @@
 //! The drawing stage: a [`VisibleSet`] becomes a [`Drawing`] (filled regions in pixel
 //! coordinates, back to front), the same way whichever strategy computed it.
 //!
-//! Steps: each visible piece's vertices are rounded to pixels once ([`regions::shared_vertex_pixels`],
-//! so abutting pieces share their rounded vertices); the pieces of a group (one face, or with
-//! [`DrawOptions::merge_surfaces`] one surface of coplanar faces of one paint,
-//! [`regions::surfaces`]) are united into regions with holes ([`regions`]); the layered
-//! fragments follow, one item per run of one polygon, so a viewer never blends their common
-//! edges twice; with [`DrawOptions::seams`], the boundaries that opaque regions share are
-//! collected as strokes under the fills ([`seams`]).
+//! Steps: each exact vertex of the visible pieces is named and rounded to pixels once
+//! ([`regions::shared_vertices`], so abutting pieces share their rounded vertices); the pieces
+//! of a group (one face, or with [`DrawOptions::merge_surfaces`] one surface of coplanar faces
+//! of one paint, [`regions::surfaces`]) are merged into regions with holes ([`regions`]); the
+//! layered fragments follow, one item per run of one polygon, so a viewer never blends their
+//! common edges twice; with [`DrawOptions::seams`], the boundaries that opaque regions share
+//! are collected as strokes under the fills ([`seams`]), clipped to the outline of the opaque
+//! regions.
 //!
-//! Invariant: the output rounding (one f64 rounding per exact vertex, then geo's union, far below
-//! a millionth of a pixel) is the only approximation between the visible set and the drawing;
-//! items keep the visible set's order (opaque regions, then the layered fragments) and the
-//! drawing is in canonical form ([`canonicalize`]): rings start at a defined vertex with a
-//! defined orientation, disjoint opaque regions are sorted by face.
+//! Invariant: the output rounding (one f64 rounding per exact vertex, a function of the exact
+//! point) is the only approximation between the visible set and the drawing; the regions and
+//! the outline depend only on the visible point set, not on how a strategy cut it into pieces
+//! (merged exactly, their rings run between true corners). Items keep the visible set's order
+//! (opaque regions, then the layered fragments) and the drawing is in canonical form
+//! ([`canonicalize`]): rings start at a defined vertex with a defined orientation, disjoint
+//! opaque regions are sorted by face.
 
 pub mod regions;
 pub mod seams;
@@ -28,7 +31,7 @@ use crate::progress::Report;
 use crate::project::ScreenScene;
 use crate::scene::Scene;
 use crate::visibility::{Fragment, Stats, Strategy, VisibleSet, pixel_ring};
-use regions::{outline, regions, regions_of, shared_vertex_pixels, surfaces};
+use regions::{outline, regions, regions_of, shared_vertices, surfaces};
 use std::collections::BTreeMap;
 
 /// How a visible set is drawn.
@@ -146,7 +149,7 @@ pub fn draw(
     let group_of = |p: &Piece| group[p.poly as usize];
     let samples = Samples::new(screen.width, screen.height);
     // One rounding per exact vertex, for the regions, the outline and the seams alike.
-    let vertices = shared_vertex_pixels(opaque, &samples);
+    let vertices = shared_vertices(opaque, &samples);
     let mut items: Vec<DrawItem> = regions_of(opaque, &vertices, screen, group_of, report)
         .into_iter()
         .map(|r| item(opaque[r.piece].poly, &r.faces, r.rings))
@@ -173,7 +176,7 @@ pub fn draw(
     let seams = if options.seams && !opaque.is_empty() {
         let color = |p: &Piece| paints[p.poly as usize].color;
         Seams {
-            strokes: seam_strokes(opaque, &vertices, &group_of, &color),
+            strokes: seam_strokes(opaque, &vertices.pixels, &group_of, &color),
             outline: outline(opaque, &vertices),
         }
     } else {

@@ -27,7 +27,7 @@ pub struct SharedEdge {
 
 /// The boundary segments shared by pieces of different groups (`group(i)` of piece i), in
 /// piece order. `pieces` must have pairwise disjoint interiors (a visible set); `vertices` are
-/// their [`shared_vertex_pixels`], so that one exact vertex has the same bits in every piece.
+/// their [`shared_vertices`]' pixels, so that one exact vertex has the same bits in every piece.
 ///
 /// Two passes. Whole edges first: an edge of one piece whose ends are, the other way round,
 /// the ends of an edge of another is shared whole (the same exact vertices have the same
@@ -36,7 +36,7 @@ pub struct SharedEdge {
 /// same line, decided exactly, and the part they share runs between the ends of each that lie
 /// in the other piece.
 ///
-/// [`shared_vertex_pixels`]: super::regions::shared_vertex_pixels
+/// [`shared_vertices`]: super::regions::shared_vertices
 pub fn shared_edges(
     pieces: &[Piece],
     vertices: &[Vec<[f64; 2]>],
@@ -159,37 +159,16 @@ fn shared_part(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::draw::regions::shared_vertex_pixels;
-    use crate::exact::polygon::Boundary;
-    use crate::exact::{GridPoint, Plane, Samples};
-
-    fn piece(poly: u32, corners: &[[i32; 2]]) -> Piece {
-        let gp: Vec<GridPoint> = corners
-            .iter()
-            .map(|&[x, y]| GridPoint { x, y, z: 0 })
-            .collect();
-        let support = Plane {
-            a: 0,
-            b: 0,
-            c: 1,
-            d: 0,
-        };
-        let sides: Vec<Boundary> = (0..gp.len() as u32)
-            .map(|side| Boundary::Outline { poly, side })
-            .collect();
-        Piece::from_convex(poly, support, &gp, &sides)
-    }
+    use crate::draw::regions::shared_vertices;
+    use crate::draw::regions::tests::{grid_piece as piece, grid_samples, to_grid};
 
     /// The shared segments as (pieces, ends in grid units, ends sorted).
     fn shared(pieces: &[Piece], group: impl Fn(usize) -> u32) -> Vec<([usize; 2], [[f64; 2]; 2])> {
-        // A 2^23-pixel-wide image makes pixels and grid units the same up to an offset.
-        let s = Samples::new(1 << 23, 1 << 23);
-        let vertices = shared_vertex_pixels(pieces, &s);
-        let grid = |[c, r]: [f64; 2]| [c - (1 << 22) as f64, (1 << 22) as f64 - r];
+        let vertices = shared_vertices(pieces, &grid_samples()).pixels;
         let mut out: Vec<_> = shared_edges(pieces, &vertices, group)
             .into_iter()
             .map(|e| {
-                let mut ends = e.ends.map(grid);
+                let mut ends = e.ends.map(to_grid);
                 ends.sort_by(|x, y| x.partial_cmp(y).unwrap());
                 (e.pieces, ends)
             })
