@@ -11,12 +11,13 @@
 //! regions.
 //!
 //! Invariant: the output rounding (one f64 rounding per exact vertex, a function of the exact
-//! point) is the only approximation between the visible set and the drawing; the regions and
-//! the outline depend only on the visible point set, not on how a strategy cut it into pieces
-//! (merged exactly, their rings run between true corners). Items keep the visible set's order
-//! (opaque regions, then the layered fragments) and the drawing is in canonical form
-//! ([`canonicalize`]): rings start at a defined vertex with a defined orientation, disjoint
-//! opaque regions are sorted by face.
+//! point) is the only approximation between the visible set and the drawing, and the drawing
+//! depends only on the visible point set, not on how a strategy cut it into pieces: regions,
+//! outline and seam segments are merged exactly into maximal straight runs between true
+//! corners, so two strategies with the same visible set draw the same bytes. Items keep the
+//! visible set's order (opaque regions, then the layered fragments) and the drawing is in
+//! canonical form ([`canonicalize`]): rings start at a defined vertex with a defined
+//! orientation, disjoint opaque regions are sorted by face.
 
 pub mod regions;
 pub mod seams;
@@ -31,7 +32,7 @@ use crate::progress::Report;
 use crate::project::ScreenScene;
 use crate::scene::Scene;
 use crate::visibility::{Fragment, Stats, Strategy, VisibleSet, pixel_ring};
-use regions::{outline, regions, regions_of, shared_vertices, surfaces};
+use regions::{Vertices, outline, regions, regions_of, shared_vertices, surfaces};
 use std::collections::BTreeMap;
 
 /// How a visible set is drawn.
@@ -176,7 +177,7 @@ pub fn draw(
     let seams = if options.seams && !opaque.is_empty() {
         let color = |p: &Piece| paints[p.poly as usize].color;
         Seams {
-            strokes: seam_strokes(opaque, &vertices.pixels, &group_of, &color),
+            strokes: seam_strokes(opaque, &vertices, &group_of, &color),
             outline: outline(opaque, &vertices),
         }
     } else {
@@ -201,15 +202,17 @@ pub fn draw(
 }
 
 /// The boundaries that opaque pieces of different groups share, stroked in the darker of the
-/// two colours (8-bit, then the smaller), one [`SeamStroke`] per colour in colour order.
+/// two colours (8-bit, then the smaller), one [`SeamStroke`] per colour in colour order, each
+/// segment a maximal straight run of its colour ([`seams::straight_runs`]).
 fn seam_strokes(
     pieces: &[Piece],
-    vertices: &[Vec<[f64; 2]>],
+    vertices: &Vertices,
     group: &dyn Fn(&Piece) -> u32,
     color: &dyn Fn(&Piece) -> [f64; 3],
 ) -> Vec<SeamStroke> {
-    let mut by_color: BTreeMap<[u8; 3], SeamStroke> = BTreeMap::new();
-    for e in seams::shared_edges(pieces, vertices, |i| group(&pieces[i])) {
+    let shared = seams::shared_edges(pieces, &vertices.pixels, |i| group(&pieces[i]));
+    let mut by_color: BTreeMap<[u8; 3], ([f64; 3], Vec<&seams::SharedEdge>)> = BTreeMap::new();
+    for e in &shared {
         let [ca, cb] = e.pieces.map(|i| color(&pieces[i]));
         let key = |c: [f64; 3]| {
             let u = to_u8(c);
@@ -218,12 +221,15 @@ fn seam_strokes(
         let c = if key(cb) < key(ca) { cb } else { ca };
         by_color
             .entry(to_u8(c))
-            .or_insert_with(|| SeamStroke {
-                color: c,
-                segments: Vec::new(),
-            })
-            .segments
-            .push(e.ends);
+            .or_insert_with(|| (c, Vec::new()))
+            .1
+            .push(e);
     }
-    by_color.into_values().collect()
+    by_color
+        .into_values()
+        .map(|(color, edges)| SeamStroke {
+            color,
+            segments: seams::straight_runs(&edges, pieces, &vertices.ids),
+        })
+        .collect()
 }
