@@ -775,27 +775,36 @@ pub(super) mod tests {
         grid_piece(poly, &[[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
     }
 
+    /// Rings of grid points as the merge gives them in grid units.
+    fn ring_set(rings: &[&[[i32; 2]]]) -> Rings {
+        rings
+            .iter()
+            .map(|r| r.iter().map(|p| p.map(f64::from)).collect())
+            .collect()
+    }
+
+    /// One region with these rings ([`ring_set`]).
+    fn region(rings: &[&[[i32; 2]]]) -> Vec<Rings> {
+        vec![ring_set(rings)]
+    }
+
+    /// Rectangles (x0, y0, x1, y1) of polygon 0.
+    fn rects(boxes: &[[i32; 4]]) -> Vec<Piece> {
+        boxes.iter().map(|&b| rect(0, b)).collect()
+    }
+
     #[test]
     fn a_square_cut_three_ways_merges_to_its_four_corners() {
-        let quadrants = [
-            rect(0, [0, 0, 4, 4]),
-            rect(0, [4, 0, 8, 4]),
-            rect(0, [4, 4, 8, 8]),
-            rect(0, [0, 4, 4, 8]),
-        ];
+        let quadrants = rects(&[[0, 0, 4, 4], [4, 0, 8, 4], [4, 4, 8, 8], [0, 4, 4, 8]]);
         // A T-junction: the right strip's cut ends inside the left strip's edge.
-        let strips = [
-            rect(0, [0, 0, 3, 8]),
-            rect(0, [3, 0, 8, 5]),
-            rect(0, [3, 5, 8, 8]),
-        ];
+        let strips = rects(&[[0, 0, 3, 8], [3, 0, 8, 5], [3, 5, 8, 8]]);
         let fan = [
             grid_piece(0, &[[0, 0], [8, 0], [4, 4]]),
             grid_piece(0, &[[8, 0], [8, 8], [4, 4]]),
             grid_piece(0, &[[8, 8], [0, 8], [4, 4]]),
             grid_piece(0, &[[0, 8], [0, 0], [4, 4]]),
         ];
-        let square = vec![vec![vec![[0.0, 0.0], [8.0, 0.0], [8.0, 8.0], [0.0, 8.0]]]];
+        let square = region(&[&[[0, 0], [8, 0], [8, 8], [0, 8]]]);
         assert_eq!(rings(&quadrants), square);
         assert_eq!(rings(&strips), square);
         assert_eq!(rings(&fan), square);
@@ -832,33 +841,17 @@ pub(super) mod tests {
             ],
         );
         assert_eq!((once.len(), thrice.len()), (2, 7));
-        let corners = vec![vec![vec![
-            [0.0, 0.0],
-            [70.0, 10.0],
-            [90.0, 80.0],
-            [10.0, 60.0],
-        ]]];
+        let corners = region(&[&[[0, 0], [70, 10], [90, 80], [10, 60]]]);
         assert_eq!(rings(&once), corners);
         assert_eq!(rings(&thrice), corners);
     }
 
     #[test]
     fn an_l_shape_cut_three_ways_merges_to_its_six_corners() {
-        let wide_bottom = [rect(0, [0, 0, 8, 4]), rect(0, [0, 4, 4, 8])];
-        let tall_left = [rect(0, [0, 0, 4, 8]), rect(0, [4, 0, 8, 4])];
-        let squares = [
-            rect(0, [4, 0, 8, 4]),
-            rect(0, [0, 4, 4, 8]),
-            rect(0, [0, 0, 4, 4]),
-        ];
-        let l = vec![vec![vec![
-            [0.0, 0.0],
-            [8.0, 0.0],
-            [8.0, 4.0],
-            [4.0, 4.0],
-            [4.0, 8.0],
-            [0.0, 8.0],
-        ]]];
+        let wide_bottom = rects(&[[0, 0, 8, 4], [0, 4, 4, 8]]);
+        let tall_left = rects(&[[0, 0, 4, 8], [4, 0, 8, 4]]);
+        let squares = rects(&[[4, 0, 8, 4], [0, 4, 4, 8], [0, 0, 4, 4]]);
+        let l = region(&[&[[0, 0], [8, 0], [8, 4], [4, 4], [4, 8], [0, 8]]]);
         assert_eq!(rings(&wide_bottom), l);
         assert_eq!(rings(&tall_left), l);
         assert_eq!(rings(&squares), l);
@@ -866,18 +859,8 @@ pub(super) mod tests {
 
     #[test]
     fn a_ring_cut_three_ways_merges_to_an_outer_ring_and_a_hole() {
-        let bands = [
-            rect(0, [0, 0, 6, 2]),
-            rect(0, [0, 4, 6, 6]),
-            rect(0, [0, 2, 2, 4]),
-            rect(0, [4, 2, 6, 4]),
-        ];
-        let pinwheel = [
-            rect(0, [0, 0, 4, 2]),
-            rect(0, [4, 0, 6, 4]),
-            rect(0, [2, 4, 6, 6]),
-            rect(0, [0, 2, 2, 6]),
-        ];
+        let bands = rects(&[[0, 0, 6, 2], [0, 4, 6, 6], [0, 2, 2, 4], [4, 2, 6, 4]]);
+        let pinwheel = rects(&[[0, 0, 4, 2], [4, 0, 6, 4], [2, 4, 6, 6], [0, 2, 2, 6]]);
         let trapezoids = [
             grid_piece(0, &[[0, 0], [6, 0], [4, 2], [2, 2]]),
             grid_piece(0, &[[6, 0], [6, 6], [4, 4], [4, 2]]),
@@ -885,10 +868,10 @@ pub(super) mod tests {
             grid_piece(0, &[[0, 6], [0, 0], [2, 2], [2, 4]]),
         ];
         // Outer ring counter-clockwise (y up), the hole clockwise: the interior on the left.
-        let ring = vec![vec![
-            vec![[0.0, 0.0], [6.0, 0.0], [6.0, 6.0], [0.0, 6.0]],
-            vec![[2.0, 2.0], [2.0, 4.0], [4.0, 4.0], [4.0, 2.0]],
-        ]];
+        let ring = region(&[
+            &[[0, 0], [6, 0], [6, 6], [0, 6]],
+            &[[2, 2], [2, 4], [4, 4], [4, 2]],
+        ]);
         assert_eq!(rings(&bands), ring);
         assert_eq!(rings(&pinwheel), ring);
         assert_eq!(rings(&trapezoids), ring);
@@ -896,7 +879,7 @@ pub(super) mod tests {
 
     #[test]
     fn squares_touching_at_a_corner_are_two_regions_however_cut() {
-        let whole = [rect(0, [0, 0, 4, 4]), rect(0, [4, 4, 8, 8])];
+        let whole = rects(&[[0, 0, 4, 4], [4, 4, 8, 8]]);
         let halves = [
             grid_piece(0, &[[4, 4], [8, 4], [8, 8]]),
             grid_piece(0, &[[0, 0], [4, 0], [0, 4]]),
@@ -905,8 +888,8 @@ pub(super) mod tests {
         ];
         // Regions in the order of their topmost vertex on screen (y down).
         let two = vec![
-            vec![vec![[4.0, 4.0], [8.0, 4.0], [8.0, 8.0], [4.0, 8.0]]],
-            vec![vec![[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [0.0, 4.0]]],
+            ring_set(&[&[[4, 4], [8, 4], [8, 8], [4, 8]]]),
+            ring_set(&[&[[0, 0], [4, 0], [4, 4], [0, 4]]]),
         ];
         assert_eq!(rings(&whole), two);
         assert_eq!(rings(&halves), two);
@@ -930,16 +913,16 @@ pub(super) mod tests {
             rect(0, [3, 2, 6, 6]),
         ];
         // The walk turns most to the left at the pinch (3, 0): it takes the hole on the way.
-        let pinched = vec![vec![vec![
-            [0.0, 0.0],
-            [3.0, 0.0],
-            [2.0, 2.0],
-            [4.0, 2.0],
-            [3.0, 0.0],
-            [6.0, 0.0],
-            [6.0, 6.0],
-            [0.0, 6.0],
-        ]]];
+        let pinched = region(&[&[
+            [0, 0],
+            [3, 0],
+            [2, 2],
+            [4, 2],
+            [3, 0],
+            [6, 0],
+            [6, 6],
+            [0, 6],
+        ]]);
         assert_eq!(rings(&three), pinched);
         assert_eq!(rings(&five), pinched);
     }
