@@ -4,7 +4,7 @@
 //! Steps: each exact vertex of the visible pieces is named and rounded to pixels once
 //! ([`regions::shared_vertices`], so abutting pieces share their rounded vertices); the pieces
 //! of a group (one face, or with [`DrawOptions::merge_surfaces`] one surface of coplanar faces
-//! of one paint, [`regions::surfaces`]) are merged into regions with holes ([`regions`]); the
+//! of one paint, [`regions::surfaces`]) are merged into regions with holes ([`mod@regions`]); the
 //! layered fragments follow, one item per run of one polygon, so a viewer never blends their
 //! common edges twice; with [`DrawOptions::seams`], the boundaries that opaque regions share
 //! are collected as strokes under the fills ([`seams`]), clipped to the outline of the opaque

@@ -9,7 +9,7 @@
 //!   decided exactly with [`Piece::same_vertex`]) and its pixel coordinates, the exact grid
 //!   coordinates correctly rounded to f64, then mapped to pixels. Whichever lines of whichever
 //!   piece name a point, it gets the same bits.
-//! - **Merge** ([`merge`]): the pieces' edges, with every vertex of another piece of the group
+//! - **Merge**: the pieces' edges, with every vertex of another piece of the group
 //!   lying inside an edge inserted into it (a T-junction, decided exactly), are directed edges
 //!   between vertex ids. An edge shared by two pieces runs both ways and cancels; the rest is
 //!   the boundary of the union, each edge with the interior on its left. A boundary vertex
