@@ -1,19 +1,23 @@
 //! The drawing stage: a [`VisibleSet`] becomes a [`Drawing`] (filled regions in pixel
 //! coordinates, back to front), the same way whichever strategy computed it.
 //!
-//! Steps: each visible piece's vertices are rounded to pixels once ([`regions::shared_vertex_pixels`],
-//! so abutting pieces share their rounded vertices); the pieces of a group (one face, or with
-//! [`DrawOptions::merge_surfaces`] one surface of coplanar faces of one paint,
-//! [`regions::surfaces`]) are united into regions with holes ([`regions()`]); the layered
-//! fragments follow, one item per run of one polygon, so a viewer never blends their common
-//! edges twice; with [`DrawOptions::seams`], the boundaries that opaque regions share are
-//! collected as strokes under the fills ([`seams`]).
+//! Steps: each exact vertex of the visible pieces is named and rounded to pixels once
+//! ([`regions::shared_vertices`], so abutting pieces share their rounded vertices); the pieces
+//! of a group (one face, or with [`DrawOptions::merge_surfaces`] one surface of coplanar faces
+//! of one paint, [`regions::surfaces`]) are merged into regions with holes ([`mod@regions`]); the
+//! layered fragments follow, one item per run of one polygon, so a viewer never blends their
+//! common edges twice; with [`DrawOptions::seams`], the boundaries that opaque regions share
+//! are collected as strokes under the fills ([`seams`]), clipped to the outline of the opaque
+//! regions.
 //!
-//! Invariant: the output rounding (one f64 rounding per exact vertex, then geo's union, far below
-//! a millionth of a pixel) is the only approximation between the visible set and the drawing;
-//! items keep the visible set's order (opaque regions, then the layered fragments) and the
-//! drawing is in canonical form ([`canonicalize`]): rings start at a defined vertex with a
-//! defined orientation, disjoint opaque regions are sorted by face.
+//! Invariant: the output rounding (one f64 rounding per exact vertex, a function of the exact
+//! point) is the only approximation between the visible set and the drawing, and the drawing
+//! depends only on the visible point set, not on how a strategy cut it into pieces: regions,
+//! outline and seam segments are merged exactly into maximal straight runs between true
+//! corners, so two strategies with the same visible set draw the same bytes. Items keep the
+//! visible set's order (opaque regions, then the layered fragments) and the drawing is in
+//! canonical form ([`canonicalize`]): rings start at a defined vertex with a defined
+//! orientation, disjoint opaque regions are sorted by face.
 
 pub mod regions;
 pub mod seams;
@@ -28,7 +32,7 @@ use crate::progress::Report;
 use crate::project::ScreenScene;
 use crate::scene::Scene;
 use crate::visibility::{Fragment, Stats, Strategy, VisibleSet, pixel_ring};
-use regions::{outline, regions, regions_of, shared_vertex_pixels, surfaces};
+use regions::{Vertices, outline, regions, regions_of, shared_vertices, surfaces};
 use std::collections::BTreeMap;
 
 /// How a visible set is drawn.
@@ -148,7 +152,7 @@ pub fn draw(
     let group_of = |p: &Piece| group[p.poly as usize];
     let samples = Samples::new(screen.width, screen.height);
     // One rounding per exact vertex, for the regions, the outline and the seams alike.
-    let vertices = shared_vertex_pixels(opaque, &samples);
+    let vertices = shared_vertices(opaque, &samples);
     let mut items: Vec<DrawItem> = regions_of(opaque, &vertices, screen, group_of, report)
         .into_iter()
         .map(|r| item(opaque[r.piece].poly, &r.faces, r.rings))
@@ -200,15 +204,17 @@ pub fn draw(
 }
 
 /// The boundaries that opaque pieces of different groups share, stroked in the darker of the
-/// two colours (8-bit, then the smaller), one [`SeamStroke`] per colour in colour order.
+/// two colours (8-bit, then the smaller), one [`SeamStroke`] per colour in colour order, each
+/// segment a maximal straight run of its colour ([`seams::straight_runs`]).
 fn seam_strokes(
     pieces: &[Piece],
-    vertices: &[Vec<[f64; 2]>],
+    vertices: &Vertices,
     group: &dyn Fn(&Piece) -> u32,
     color: &dyn Fn(&Piece) -> [f64; 3],
 ) -> Vec<SeamStroke> {
-    let mut by_color: BTreeMap<[u8; 3], SeamStroke> = BTreeMap::new();
-    for e in seams::shared_edges(pieces, vertices, |i| group(&pieces[i])) {
+    let shared = seams::shared_edges(pieces, &vertices.pixels, |i| group(&pieces[i]));
+    let mut by_color: BTreeMap<[u8; 3], ([f64; 3], Vec<&seams::SharedEdge>)> = BTreeMap::new();
+    for e in &shared {
         let [ca, cb] = e.pieces.map(|i| color(&pieces[i]));
         let key = |c: [f64; 3]| {
             let u = to_u8(c);
@@ -217,12 +223,15 @@ fn seam_strokes(
         let c = if key(cb) < key(ca) { cb } else { ca };
         by_color
             .entry(to_u8(c))
-            .or_insert_with(|| SeamStroke {
-                color: c,
-                segments: Vec::new(),
-            })
-            .segments
-            .push(e.ends);
+            .or_insert_with(|| (c, Vec::new()))
+            .1
+            .push(e);
     }
-    by_color.into_values().collect()
+    by_color
+        .into_values()
+        .map(|(color, edges)| SeamStroke {
+            color,
+            segments: seams::straight_runs(&edges, pieces, &vertices.ids),
+        })
+        .collect()
 }

@@ -1,17 +1,42 @@
 //! From visible pieces to drawable regions: the pieces of a group (one face, or one surface of
-//! coplanar faces with the same paint) are united into regions with holes.
+//! coplanar faces with the same paint) are merged into regions with holes.
 //!
-//! Invariant: the regions of a group cover the union of its pieces, up to the output rounding of
-//! their vertices (pixel coordinates rounded once, geo's union moving points by far less than a
-//! millionth of a pixel), and each region lists the input faces whose pieces lie in it.
+//! Invariant: the regions of a group depend only on the point set its pieces cover, never on
+//! how that set was cut into convex pieces, so two strategies that find the same visible set
+//! draw the same regions. Every decision is exact; the only approximation is the output
+//! rounding, one per exact vertex and a function of the exact point alone:
+//! - **Vertices** ([`shared_vertices`]): every exact vertex gets an id (equal ids, same point,
+//!   decided exactly with [`Piece::same_vertex`]) and its pixel coordinates, the exact grid
+//!   coordinates correctly rounded to f64, then mapped to pixels. Whichever lines of whichever
+//!   piece name a point, it gets the same bits.
+//! - **Merge**: the pieces' edges, with every vertex of another piece of the group
+//!   lying inside an edge inserted into it (a T-junction, decided exactly), are directed edges
+//!   between vertex ids. An edge shared by two pieces runs both ways and cancels; the rest is
+//!   the boundary of the union, each edge with the interior on its left. A boundary vertex
+//!   where the boundary runs straight on (the next vertex lies on the incoming edge's kernel
+//!   line, exactly) is dropped: what is left are the true corners and the points where the
+//!   boundary touches itself, which belong to the point set, not to the cut.
+//! - **Cycles**: at a vertex with several outgoing boundary edges (the boundary touches itself
+//!   there), the walk takes the one that turns most to the left, decided exactly. This walks
+//!   the boundary of one connected interior at a time: two squares touching at a corner are
+//!   two cycles, a hole touching the outer boundary at a point is part of the outer cycle
+//!   (face tracing of a plane graph); either way the cycles are a function of the point set.
+//! - **Regions**: pieces sharing an edge are one connected interior, one region, whose cycles
+//!   are its outer ring and its holes (combinatorially: no containment test). Its outer ring
+//!   is the cycle holding its smallest vertex (y, then x, in pixels): the top of a region lies
+//!   on its outer boundary. A region lists the faces of its pieces and is painted by the piece
+//!   of its smallest (face id, polygon).
 
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
+use crate::exact::predicates::Line;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
 use crate::visibility::coverage::bounds;
 use crate::visibility::grid::for_each_near;
+use bnum::cast::As;
+use bnum::types::{I512, U512};
 use glam::DVec3;
 use std::cmp::Ordering;
 use std::collections::BTreeMap;
@@ -21,35 +46,35 @@ use std::collections::BTreeMap;
 pub struct Region {
     /// Input face ids of the pieces in it, ascending, at least one.
     pub faces: Vec<FaceId>,
-    /// Index of one of its pieces (whose face paints it).
+    /// Index of the piece of its smallest face id (then smallest polygon), whose face paints
+    /// it.
     pub piece: usize,
     /// Outer ring, then holes; pixel coordinates, y down; even-odd.
     pub rings: Vec<Vec<[f64; 2]>>,
 }
 
 /// The regions of `pieces` (disjoint), grouped by `key`: groups in key order, and within a
-/// group regions in the order of the union.
+/// group regions in the order of their outer rings' smallest vertex (y, then x).
 pub fn regions<K: Ord>(
     pieces: &[Piece],
     screen: &ScreenScene,
     key: impl Fn(&Piece) -> K,
 ) -> Vec<Region> {
-    let vertices = shared_vertex_pixels(pieces, &Samples::new(screen.width, screen.height));
+    let vertices = shared_vertices(pieces, &Samples::new(screen.width, screen.height));
     regions_of(pieces, &vertices, screen, key, None)
 }
 
-/// [`regions`] of pieces whose [`shared_vertex_pixels`] are known, reporting stage "regions":
+/// [`regions`] of pieces whose [`shared_vertices`] are known, reporting stage "regions":
 /// pieces merged of all.
 pub fn regions_of<K: Ord>(
     pieces: &[Piece],
-    vertices: &[Vec<[f64; 2]>],
+    vertices: &Vertices,
     screen: &ScreenScene,
     key: impl Fn(&Piece) -> K,
     report: Option<Report>,
 ) -> Vec<Region> {
     let mut ticker = Ticker::new(report, "regions", pieces.len() as u64);
     let mut merged_pieces = 0;
-    let s = Samples::new(screen.width, screen.height);
     let mut groups: BTreeMap<K, Vec<usize>> = BTreeMap::new();
     for (i, p) in pieces.iter().enumerate() {
         groups.entry(key(p)).or_default().push(i);
@@ -60,41 +85,19 @@ pub fn regions_of<K: Ord>(
         // The pieces of the groups before this one are merged.
         ticker.tick(merged_pieces);
         merged_pieces += members.len() as u64;
-        let group: Vec<&Piece> = members.iter().map(|&i| &pieces[i]).collect();
-        let group_vertices: Vec<&[[f64; 2]]> =
-            members.iter().map(|&i| vertices[i].as_slice()).collect();
-        let mut faces: Vec<FaceId> = members.iter().map(|&i| face_of(i)).collect();
-        faces.sort_unstable();
-        faces.dedup();
-        let merged = merge_rings(conforming_rings(&group, &group_vertices));
-        if faces.len() == 1 || merged.len() == 1 {
-            out.extend(merged.into_iter().map(|rings| Region {
-                faces: faces.clone(),
-                piece: members[0],
-                rings,
-            }));
-            continue;
-        }
-        // Several faces in several regions: a piece belongs to the region that holds its
-        // centroid (strictly inside a convex piece, so inside its region; f64, for labels only).
-        for rings in merged {
-            let inside: Vec<usize> = members
+        for m in merge(pieces, vertices, &members) {
+            let mut faces: Vec<FaceId> = m.members.iter().map(|&i| face_of(i)).collect();
+            faces.sort_unstable();
+            faces.dedup();
+            let piece = *m
+                .members
                 .iter()
-                .copied()
-                .filter(|&i| ring_set_contains(&rings, centroid(&pieces[i], &s)))
-                .collect();
-            let mut region_faces: Vec<FaceId> = inside.iter().map(|&i| face_of(i)).collect();
-            region_faces.sort_unstable();
-            region_faces.dedup();
-            let (faces, piece) = match inside.first() {
-                Some(&first) => (region_faces, first),
-                // Only slivers thinner than the rounding: label with the whole group.
-                None => (faces.clone(), members[0]),
-            };
+                .min_by_key(|&&i| (face_of(i), pieces[i].poly, i))
+                .expect("a region has pieces");
             out.push(Region {
                 faces,
                 piece,
-                rings,
+                rings: m.rings,
             });
         }
     }
@@ -146,195 +149,860 @@ pub fn surfaces<P: Ord>(
     labels
 }
 
-/// The mean of a piece's vertices, in pixels.
-fn centroid(p: &Piece, s: &Samples) -> [f64; 2] {
-    let v = p.vertices_f64();
-    let n = v.len() as f64;
-    let [x, y] = v
-        .iter()
-        .fold([0.0, 0.0], |[x, y], [a, b]| [x + a / n, y + b / n]);
-    [s.col_of(x), s.row_of(y)]
-}
-
-thread_local! {
-    /// Set while a union runs whose panic is caught: the panic hook stays quiet then.
-    static IN_UNION: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
-}
-
-/// `geo`'s unary union, or `None` if it panicked.
-fn union_or_none(polys: &[geo::Polygon<f64>]) -> Option<geo::MultiPolygon<f64>> {
-    static QUIET_HOOK: std::sync::Once = std::sync::Once::new();
-    QUIET_HOOK.call_once(|| {
-        let previous = std::panic::take_hook();
-        std::panic::set_hook(Box::new(move |info| {
-            if !IN_UNION.with(|f| f.get()) {
-                previous(info);
-            }
-        }));
-    });
-    IN_UNION.with(|f| f.set(true));
-    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        geo::algorithm::bool_ops::unary_union(polys)
-    }));
-    IN_UNION.with(|f| f.set(false));
-    result.ok()
-}
-
-/// Even-odd containment of a point in a ring set.
-fn ring_set_contains(rings: &[Vec<[f64; 2]>], [px, py]: [f64; 2]) -> bool {
-    let mut inside = false;
-    for ring in rings {
-        let n = ring.len();
-        for k in 0..n {
-            let ([x0, y0], [x1, y1]) = (ring[k], ring[(k + 1) % n]);
-            if (y0 > py) != (y1 > py) && px < x0 + (py - y0) * (x1 - x0) / (y1 - y0) {
-                inside = !inside;
-            }
-        }
-    }
-    inside
-}
-
-/// The outline of disjoint pieces (with their [`shared_vertex_pixels`]): the rings of their
-/// union, outer rings and holes, even-odd. T-junctions are left to the union (no conforming
-/// rings): where a union of drawing coordinates leaves a crack, it is far thinner than a pixel.
-pub fn outline(pieces: &[Piece], vertices: &[Vec<[f64; 2]>]) -> Vec<Vec<[f64; 2]>> {
-    debug_assert_eq!(pieces.len(), vertices.len());
-    merge_rings(vertices.to_vec())
+/// The outline of disjoint pieces (with their [`shared_vertices`]): the rings of their union,
+/// outer rings and holes, even-odd; merged as one group, so it too depends only on the point
+/// set the pieces cover.
+pub fn outline(pieces: &[Piece], vertices: &Vertices) -> Vec<Vec<[f64; 2]>> {
+    debug_assert_eq!(pieces.len(), vertices.pixels.len());
+    let all: Vec<usize> = (0..pieces.len()).collect();
+    merge(pieces, vertices, &all)
         .into_iter()
-        .flatten()
+        .flat_map(|m| m.rings)
         .collect()
 }
 
-/// Every piece's vertices in pixels, rounded once, with the same bits wherever pieces share an
-/// exact vertex (decided exactly): the first piece having it gives its rounding to the others.
-/// Two pieces' roundings of one point may otherwise differ in the last bits (each rounds its own
-/// implicit vertex), and a union then leaves a crack between them.
-pub fn shared_vertex_pixels(pieces: &[Piece], s: &Samples) -> Vec<Vec<[f64; 2]>> {
-    let px = |[x, y]: [f64; 2]| [s.col_of(x), s.row_of(y)];
+/// The vertices of a list of pieces, each exact point named once.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Vertices {
+    /// Per piece, per vertex: pixel coordinates (column, row; y down), the same bits wherever
+    /// pieces share the exact point.
+    pub pixels: Vec<Vec<[f64; 2]>>,
+    /// Per piece, per vertex: the id of its exact point; two vertices have the same id if and
+    /// only if they are the same point (decided exactly).
+    pub ids: Vec<Vec<u32>>,
+}
+
+/// Every piece's vertices named and rounded once (see [`Vertices`]): each exact point, the
+/// first time a piece has it, gets a new id and its pixel coordinates ([`vertex_pixel`]); a
+/// later piece with the same point (decided exactly) takes both.
+pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
     let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
-    let mut out: Vec<Vec<[f64; 2]>> = Vec::with_capacity(pieces.len());
+    let mut out = Vertices {
+        pixels: Vec::with_capacity(pieces.len()),
+        ids: Vec::with_capacity(pieces.len()),
+    };
+    let mut next = 0u32;
     for_each_near(
         &boxes,
         |_| true,
         |a, near| {
             let pa = &pieces[a];
-            let own = (0..pa.len())
-                .map(|k| {
-                    // Earlier pieces already hold the first rounding of every vertex they share.
-                    near.iter()
-                        .take_while(|&&b| b < a)
-                        .find_map(|&b| {
-                            (0..pieces[b].len())
-                                .find(|&v| pa.same_vertex(k, &pieces[b], v))
-                                .map(|v| out[b][v])
-                        })
-                        .unwrap_or_else(|| px(pa.vertex_f64(k)))
-                })
-                .collect();
-            out.push(own);
+            let (mut pixels, mut ids) =
+                (Vec::with_capacity(pa.len()), Vec::with_capacity(pa.len()));
+            for k in 0..pa.len() {
+                // Earlier pieces already named every point they share with this one.
+                let known = near.iter().take_while(|&&b| b < a).find_map(|&b| {
+                    (0..pieces[b].len())
+                        .find(|&v| pa.same_vertex(k, &pieces[b], v))
+                        .map(|v| (out.pixels[b][v], out.ids[b][v]))
+                });
+                let (p, id) = known.unwrap_or_else(|| {
+                    next += 1;
+                    (vertex_pixel(pa, k, s), next - 1)
+                });
+                pixels.push(p);
+                ids.push(id);
+            }
+            out.pixels.push(pixels);
+            out.ids.push(ids);
         },
     );
     out
 }
 
-/// The pixel rings of one group's pieces (`vertices`: their [`shared_vertex_pixels`]), made
-/// conforming: where a vertex of one piece lies on an edge of another (a T-junction, decided
-/// exactly), it is inserted into that edge with the very same f64 coordinates, so shared
-/// boundaries are identical segments and the union below closes them without slivers.
-fn conforming_rings(pieces: &[&Piece], vertices: &[&[[f64; 2]]]) -> Vec<Vec<[f64; 2]>> {
-    let boxes: Vec<[f64; 4]> = pieces.iter().map(|p| bounds(p)).collect();
-    let mut rings = Vec::with_capacity(pieces.len());
-    // The pieces whose bounds meet a piece's are the only ones with a vertex on its edges.
-    for_each_near(
-        &boxes,
-        |_| true,
-        |a, near| {
-            let pa = pieces[a];
-            let n = pa.len();
-            let mut ring = Vec::with_capacity(n);
-            for k in 0..n {
-                let start = vertices[a][k];
-                ring.push(start);
-                // Vertices of other pieces strictly inside edge k (line k, between vertices k
-                // and k+1): on line k, strictly inside every other line.
-                let (edge, edge_approx) = (&pa.lines[k], &pa.line_approx[k]);
-                let mut on_edge: Vec<(f64, [f64; 2])> = Vec::new();
-                for &b in near {
-                    let pb = pieces[b];
-                    for (v, &q) in vertices[b].iter().enumerate() {
-                        if pb.vertex_line_sign_with(v, edge, edge_approx) != Ordering::Equal {
-                            continue;
-                        }
-                        let inside = (pa.lines.iter().zip(&pa.line_approx)).enumerate().all(
-                            |(j, (l, la))| {
-                                j == k || pb.vertex_line_sign_with(v, l, la) == Ordering::Greater
-                            },
-                        );
-                        if inside {
-                            let t = (q[0] - start[0]).abs() + (q[1] - start[1]).abs();
-                            on_edge.push((t, q));
-                        }
-                    }
-                }
-                on_edge.sort_by(|x, y| x.0.total_cmp(&y.0));
-                on_edge.dedup_by(|x, y| x.1 == y.1);
-                ring.extend(on_edge.into_iter().map(|(_, q)| q));
-            }
-            rings.push(ring);
-        },
-    );
-    rings
+/// Vertex k of `p` in pixels: its exact grid coordinates correctly rounded to f64 (to nearest,
+/// ties to even), then mapped to pixels. A function of the exact point only, whichever two
+/// lines name it.
+pub fn vertex_pixel(p: &Piece, k: usize, s: &Samples) -> [f64; 2] {
+    let [x, y, e] = p.points[k];
+    // A zero error bound: the point is exact (a grid corner).
+    let [x, y] = if e == 0.0 {
+        [x, y]
+    } else {
+        let n = p.len();
+        exact_crossing(&p.lines[(k + n - 1) % n], &p.lines[k]).unwrap_or([x, y])
+    };
+    [s.col_of(x), s.row_of(y)]
 }
 
-/// The union of one group's disjoint convex rings (pixel coordinates) as regions, each an outer
-/// ring followed by its holes. geo's boolean union works in f64 on coordinates already rounded for
-/// output, and its snapping moves a point by far less than a millionth of a pixel: within the
-/// output-rounding approximation. A single ring is returned as it is.
-fn merge_rings(rings: Vec<Vec<[f64; 2]>>) -> Vec<Vec<Vec<[f64; 2]>>> {
-    use geo::{LineString, Polygon};
-    if rings.len() == 1 {
-        return vec![rings];
+/// Where two lines cross, each coordinate correctly rounded; `None` for parallel lines.
+fn exact_crossing(l: &Line, m: &Line) -> Option<[f64; 2]> {
+    let ([a0, b0, d0], [a1, b1, d1]) = (l.exact(), m.exact());
+    let den = a0 * b1 - a1 * b0;
+    (!den.is_zero()).then(|| {
+        [
+            ratio_f64(b0 * d1 - b1 * d0, den),
+            ratio_f64(a1 * d0 - a0 * d1, den),
+        ]
+    })
+}
+
+/// `n / d` correctly rounded to f64 (to nearest, ties to even); `d != 0`, and the quotient of
+/// crossing coordinates (far inside f64's normal range).
+fn ratio_f64(n: I512, d: I512) -> f64 {
+    if n.is_zero() {
+        return 0.0;
     }
-    let polys: Vec<Polygon<f64>> = rings
+    let negative = n.is_negative() != d.is_negative();
+    let (n, d): (U512, U512) = (n.unsigned_abs(), d.unsigned_abs());
+    // Scale so that q = floor(n·2^s / d) has 55 or 56 bits: 53 kept, then a rounding bit and
+    // more, and the remainder says whether anything lies below them.
+    let s = 55 + d.bit_width() as i32 - n.bit_width() as i32;
+    let (num, den) = if s >= 0 {
+        (n << s as u32, d)
+    } else {
+        (n, d << (-s) as u32)
+    };
+    let (q, r) = (num / den, num % den);
+    let extra = q.bit_width() - 53;
+    let kept: u64 = (q >> extra).as_();
+    // The bits dropped (two or three, so the low word holds them) and half of their unit.
+    let dropped = q.as_::<u64>() & ((1 << extra) - 1);
+    let half = 1 << (extra - 1);
+    let up = dropped > half || (dropped == half && (!r.is_zero() || kept & 1 == 1));
+    // At most 2^53: exact. The power of two is exact too.
+    let m = (kept + up as u64) as f64;
+    let exponent = extra as i32 - s;
+    let v = m * f64::from_bits(((exponent + 1023) as u64) << 52);
+    if negative { -v } else { v }
+}
+
+/// One connected region of a merge: its pieces and its rings.
+struct Merged {
+    /// Indices of its pieces (into the slice given to [`merge`]), ascending.
+    members: Vec<usize>,
+    /// Outer ring, then holes (ordered by their smallest vertex); pixels, even-odd.
+    rings: Vec<Vec<[f64; 2]>>,
+}
+
+/// A vertex of a piece: the exact point a boundary point is, to test it against lines.
+#[derive(Clone, Copy, Debug)]
+struct At {
+    piece: usize,
+    vertex: usize,
+}
+
+/// A directed edge between two exact points, along line `line` of piece `members[owner]`,
+/// whose interior lies on its left.
+#[derive(Clone, Copy, Debug)]
+struct Edge {
+    from: u32,
+    to: u32,
+    from_at: At,
+    to_at: At,
+    owner: usize,
+    line: usize,
+}
+
+/// The regions of the union of `pieces[members]` (disjoint), ordered by their outer rings'
+/// smallest vertex. See the module docs.
+fn merge(pieces: &[Piece], vertices: &Vertices, members: &[usize]) -> Vec<Merged> {
+    if let [only] = members {
+        // A strictly convex piece: every vertex is a corner.
+        return vec![Merged {
+            members: vec![*only],
+            rings: vec![vertices.pixels[*only].clone()],
+        }];
+    }
+    let group = Group {
+        pieces,
+        vertices,
+        members,
+    };
+    let (boundary, mut components) = group.boundary();
+    let graph = Boundary::new(&group, boundary);
+    let mut by_component: BTreeMap<usize, Vec<Vec<[f64; 2]>>> = BTreeMap::new();
+    // A cycle of fewer than three corners bounds nothing (only overlapping input makes one).
+    for (owner, ring) in graph.cycles(&group).into_iter().filter(|c| c.1.len() >= 3) {
+        by_component
+            .entry(components.find(owner))
+            .or_default()
+            .push(ring);
+    }
+    let mut pieces_of: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for (i, &m) in members.iter().enumerate() {
+        pieces_of.entry(components.find(i)).or_default().push(m);
+    }
+    let mut out: Vec<Merged> = by_component
         .into_iter()
-        .map(|r| {
-            Polygon::new(
-                LineString::from(r.into_iter().map(|[x, y]| (x, y)).collect::<Vec<_>>()),
-                vec![],
-            )
+        .map(|(root, mut rings)| {
+            // The outer ring holds the region's smallest vertex; holes follow in that order.
+            rings.sort_by(|a, b| cmp_points(&smallest(a), &smallest(b)));
+            let mut members = pieces_of.remove(&root).unwrap_or_default();
+            members.sort_unstable();
+            Merged { members, rings }
         })
         .collect();
-    // geo's union (i_overlay) can panic on some inputs (an index overflow in its solver, met on
-    // slivers): then the group is drawn as its conforming rings, unmerged, which covers the
-    // same area. The panic is expected there, so it is not reported on stderr.
-    let Some(merged) = union_or_none(&polys) else {
-        return polys
+    out.sort_by(|a, b| cmp_points(&smallest(&a.rings[0]), &smallest(&b.rings[0])));
+    out
+}
+
+/// (y, then x): the order of points in canonical drawings.
+fn cmp_points(a: &[f64; 2], b: &[f64; 2]) -> Ordering {
+    a[1].total_cmp(&b[1]).then(a[0].total_cmp(&b[0]))
+}
+
+/// The smallest vertex of a ring (y, then x).
+fn smallest(ring: &[[f64; 2]]) -> [f64; 2] {
+    ring.iter()
+        .copied()
+        .min_by(cmp_points)
+        .unwrap_or([f64::INFINITY; 2])
+}
+
+/// The pieces of one group, for the merge.
+struct Group<'a> {
+    pieces: &'a [Piece],
+    vertices: &'a Vertices,
+    members: &'a [usize],
+}
+
+impl Group<'_> {
+    fn piece(&self, at: At) -> &Piece {
+        &self.pieces[at.piece]
+    }
+
+    fn id(&self, at: At) -> u32 {
+        self.vertices.ids[at.piece][at.vertex]
+    }
+
+    fn pixel(&self, at: At) -> [f64; 2] {
+        self.vertices.pixels[at.piece][at.vertex]
+    }
+
+    /// The kernel line an edge runs along (positive on its left), as (piece, line index).
+    fn line(&self, e: &Edge) -> (usize, usize) {
+        (self.members[e.owner], e.line)
+    }
+
+    /// The side of line `line` of piece `piece` the exact point `at` lies on.
+    fn side(&self, at: At, (piece, line): (usize, usize)) -> Ordering {
+        let p = &self.pieces[piece];
+        self.piece(at)
+            .vertex_line_sign_with(at.vertex, &p.lines[line], &p.line_approx[line])
+    }
+
+    /// Of the two lines of `x`'s piece through `x`, one that `other` (another point) is not on,
+    /// with the side `other` lies on; a line through x crossing the line from x to `other`.
+    fn crossing_line(&self, x: At, other: At) -> Option<((usize, usize), Ordering)> {
+        let n = self.piece(x).len();
+        [(x.vertex + n - 1) % n, x.vertex]
             .into_iter()
-            .map(|p| {
-                let mut ring: Vec<[f64; 2]> = p.exterior().coords().map(|c| [c.x, c.y]).collect();
-                if ring.len() > 1 && ring.first() == ring.last() {
-                    ring.pop();
+            .map(|l| ((x.piece, l), self.side(other, (x.piece, l))))
+            .find(|&(_, s)| s != Ordering::Equal)
+    }
+
+    /// The boundary of the group's union as directed edges, and its connected interiors
+    /// (pieces joined by every edge that two pieces share, run both ways).
+    ///
+    /// An edge whose reverse is an edge of another piece (the same exact ends) is shared whole:
+    /// no vertex lies inside it (it would belong to a piece overlapping one of the two). The
+    /// other edges are split where a vertex of another piece of the group lies inside them
+    /// (a T-junction, decided exactly), so that a boundary two pieces share is the same edges
+    /// in both, run both ways, and cancels; what is left is the boundary. The vertices that can
+    /// lie inside an edge are those of pieces with such an edge too (the first and the last
+    /// piece around a T-junction vertex have one), found near it through the pieces' bounds.
+    fn boundary(&self) -> (Vec<Edge>, UnionFind) {
+        let (pieces, ids, members) = (self.pieces, &self.vertices.ids, self.members);
+        let mut components = UnionFind::new(members.len());
+        // Edge k of piece i is flat edge first[i] + k.
+        let mut first = Vec::with_capacity(members.len() + 1);
+        let mut owner = Vec::new();
+        for (i, &m) in members.iter().enumerate() {
+            first.push(owner.len());
+            owner.extend(std::iter::repeat_n(i, ids[m].len()));
+        }
+        first.push(owner.len());
+        let ends = |f: usize| {
+            let (i, k) = (owner[f], f - first[owner[f]]);
+            let v = &ids[members[i]];
+            (v[k], v[(k + 1) % v.len()])
+        };
+        let mut whole = vec![false; owner.len()];
+        for (f, b) in cancelling_pairs((0..owner.len()).map(|f| (ends(f), f))) {
+            whole[f] = true;
+            whole[b] = true;
+            components.union(owner[f], owner[b]);
+        }
+        let open = |i: usize| whole[first[i]..first[i + 1]].iter().any(|w| !w);
+        let at = |i: usize, k: usize| At {
+            piece: members[i],
+            vertex: k % pieces[members[i]].len(),
+        };
+        let mut edges = Vec::new();
+        let boxes: Vec<[f64; 4]> = members.iter().map(|&m| bounds(&pieces[m])).collect();
+        for_each_near(&boxes, open, |i, near| {
+            let near: Vec<usize> = near.iter().copied().filter(|&j| open(j)).collect();
+            for k in (0..pieces[members[i]].len()).filter(|&k| !whole[first[i] + k]) {
+                let mut points = self.inside_edge(i, k, &near);
+                points.push(at(i, k + 1));
+                let mut from = at(i, k);
+                for to in points {
+                    edges.push(Edge {
+                        from: self.id(from),
+                        to: self.id(to),
+                        from_at: from,
+                        to_at: to,
+                        owner: i,
+                        line: k,
+                    });
+                    from = to;
                 }
-                vec![ring]
+            }
+        });
+        let mut cancelled = vec![false; edges.len()];
+        for (f, b) in cancelling_pairs(edges.iter().enumerate().map(|(e, x)| ((x.from, x.to), e))) {
+            cancelled[f] = true;
+            cancelled[b] = true;
+            components.union(edges[f].owner, edges[b].owner);
+        }
+        let boundary = edges
+            .into_iter()
+            .zip(cancelled)
+            .filter_map(|(e, c)| (!c).then_some(e))
+            .collect();
+        (boundary, components)
+    }
+
+    /// The vertices of pieces `near` strictly inside edge k of piece `members[i]` (on its line,
+    /// strictly inside its other lines), each point once, in order from the edge's start.
+    fn inside_edge(&self, i: usize, k: usize, near: &[usize]) -> Vec<At> {
+        let pa = &self.pieces[self.members[i]];
+        let (line, approx) = (&pa.lines[k], &pa.line_approx[k]);
+        let start = At {
+            piece: self.members[i],
+            vertex: k,
+        };
+        let mut found: Vec<(f64, u32, At)> = Vec::new();
+        for &j in near {
+            let b = self.members[j];
+            let pb = &self.pieces[b];
+            for v in 0..pb.len() {
+                if pb.vertex_line_sign_with(v, line, approx) != Ordering::Equal {
+                    continue;
+                }
+                let strictly_inside =
+                    (pa.lines.iter().zip(&pa.line_approx))
+                        .enumerate()
+                        .all(|(l, (m, ma))| {
+                            l == k || pb.vertex_line_sign_with(v, m, ma) == Ordering::Greater
+                        });
+                if strictly_inside {
+                    let at = At {
+                        piece: b,
+                        vertex: v,
+                    };
+                    let ([x0, y0], [x, y]) = (self.pixel(start), self.pixel(at));
+                    found.push(((x - x0).abs() + (y - y0).abs(), self.id(at), at));
+                }
+            }
+        }
+        // The rounding is monotone along the edge: distances in pixels never order two points
+        // the wrong way, and ties are decided exactly.
+        found.sort_by(|p, q| {
+            p.0.total_cmp(&q.0)
+                .then_with(|| self.along_edge(start, (p.1, p.2), (q.1, q.2)))
+        });
+        found.dedup_by_key(|p| p.1);
+        found.into_iter().map(|p| p.2).collect()
+    }
+
+    /// The order of two points strictly inside an edge that starts at `start`, exactly: p
+    /// comes first if it lies on the start's side of a line through q that crosses the edge.
+    fn along_edge(&self, start: At, p: (u32, At), q: (u32, At)) -> Ordering {
+        if p.0 == q.0 {
+            return Ordering::Equal;
+        }
+        match self.crossing_line(q.1, start) {
+            Some((m, start_side)) if self.side(p.1, m) == start_side => Ordering::Less,
+            Some(_) => Ordering::Greater,
+            // Both lines through q contain the start: never for a piece whose vertex q lies
+            // strictly inside the edge.
+            None => p.0.cmp(&q.0),
+        }
+    }
+}
+
+/// The pairs of edges, given as ((from, to), index), that run between the same two points in
+/// opposite directions: each edge pairs with at most one, in index order.
+fn cancelling_pairs(edges: impl Iterator<Item = ((u32, u32), usize)>) -> Vec<(usize, usize)> {
+    // (the two ends, smaller first; whether the edge runs from the larger; the edge)
+    let mut keyed: Vec<(u64, bool, usize)> = edges
+        .map(|((a, b), e)| (((a.min(b) as u64) << 32) | a.max(b) as u64, a > b, e))
+        .collect();
+    keyed.sort_unstable();
+    let mut pairs = Vec::new();
+    for run in keyed.chunk_by(|x, y| x.0 == y.0) {
+        let split = run.partition_point(|x| !x.1);
+        let (forward, backward) = run.split_at(split);
+        pairs.extend(forward.iter().zip(backward).map(|(f, b)| (f.2, b.2)));
+    }
+    pairs
+}
+
+/// The boundary of a union as a graph: its vertices (exact ids), the edges leaving each, and
+/// which vertices are straight (dropped).
+struct Boundary {
+    /// The boundary edges, by the id they leave from (then as they came).
+    edges: Vec<Edge>,
+    /// The vertices, ascending ids: one per id that a boundary edge leaves.
+    ids: Vec<u32>,
+    /// `edges[start[v]..start[v + 1]]` leave vertex v.
+    start: Vec<usize>,
+    straight: Vec<bool>,
+}
+
+impl Boundary {
+    fn new(group: &Group, mut edges: Vec<Edge>) -> Self {
+        edges.sort_by_key(|e| e.from);
+        let mut ids: Vec<u32> = Vec::new();
+        let mut start = Vec::new();
+        for (k, e) in edges.iter().enumerate() {
+            if ids.last() != Some(&e.from) {
+                ids.push(e.from);
+                start.push(k);
+            }
+        }
+        start.push(edges.len());
+        let mut graph = Boundary {
+            edges,
+            ids,
+            start,
+            straight: Vec::new(),
+        };
+        // Per vertex: how many boundary edges arrive, and the last of them.
+        let mut arriving: Vec<(u32, usize)> = vec![(0, usize::MAX); graph.ids.len()];
+        for (k, e) in graph.edges.iter().enumerate() {
+            if let Some(v) = graph.vertex(e.to) {
+                arriving[v] = (arriving[v].0 + 1, k);
+            }
+        }
+        graph.straight = (0..graph.ids.len())
+            .map(|v| {
+                let ((1, e_in), 1) = (arriving[v], graph.start[v + 1] - graph.start[v]) else {
+                    return false;
+                };
+                let (e_in, e_out) = (&graph.edges[e_in], &graph.edges[graph.start[v]]);
+                // The boundary goes straight on through v: the next point lies on the line the
+                // boundary arrives along (and is not where it came from).
+                e_out.to != e_in.from
+                    && group.side(e_out.to_at, group.line(e_in)) == Ordering::Equal
             })
             .collect();
-    };
-    let open = |ls: &LineString<f64>| -> Vec<[f64; 2]> {
-        let mut v: Vec<[f64; 2]> = ls.coords().map(|c| [c.x, c.y]).collect();
-        // geo closes rings by repeating the first point; drawings do not.
-        if v.len() > 1 && v.first() == v.last() {
-            v.pop();
+        graph
+    }
+
+    /// The vertex of an id, if a boundary edge leaves it.
+    fn vertex(&self, id: u32) -> Option<usize> {
+        self.ids.binary_search(&id).ok()
+    }
+
+    /// Every cycle of the boundary through its kept vertices, as (a piece it bounds, by its
+    /// index in the group; the ring in pixels). Cycles are walked from the edges in the order
+    /// of their ids; where several edges leave a vertex, the walk turns most to the left.
+    fn cycles(&self, group: &Group) -> Vec<(usize, Vec<[f64; 2]>)> {
+        let mut used = vec![false; self.edges.len()];
+        let mut cycles = Vec::new();
+        for (v0, &s) in self.start[..self.ids.len()].iter().enumerate() {
+            if self.straight[v0] {
+                continue;
+            }
+            for e0 in s..self.start[v0 + 1] {
+                if used[e0] {
+                    continue;
+                }
+                used[e0] = true;
+                let mut ring = Vec::new();
+                let mut e = e0;
+                // Every step marks an edge used, so the walk ends.
+                loop {
+                    let edge = &self.edges[e];
+                    let Some(v) = self.vertex(edge.to) else {
+                        break;
+                    };
+                    let leaving = self.start[v]..self.start[v + 1];
+                    let next = if self.straight[v] {
+                        leaving.start
+                    } else {
+                        ring.push(group.pixel(edge.to_at));
+                        self.leftmost(group, edge, leaving)
+                    };
+                    if used[next] {
+                        break;
+                    }
+                    used[next] = true;
+                    e = next;
+                }
+                cycles.push((self.edges[e0].owner, ring));
+            }
         }
-        v
-    };
-    merged
-        .0
-        .iter()
-        .map(|poly| {
-            std::iter::once(open(poly.exterior()))
-                .chain(poly.interiors().iter().map(open))
+        cycles
+    }
+
+    /// Of the edges leaving the end of `arrive`, the one that turns most to the left: the
+    /// first met turning clockwise from the way back. The region left of `arrive` lies between
+    /// the two, so the walk stays on the boundary of one connected interior. Exact: turns are
+    /// sides of kernel lines (edges keep the interior on their left, positive side).
+    fn leftmost(&self, group: &Group, arrive: &Edge, leaving: std::ops::Range<usize>) -> usize {
+        // 0: a right turn, 1: straight on, 2: a left turn, 3: back (never on a valid union).
+        let class = |e: &Edge| match group.side(e.to_at, group.line(arrive)) {
+            Ordering::Less => 0,
+            Ordering::Greater => 2,
+            Ordering::Equal if self.goes_back(group, arrive, e) => 3,
+            Ordering::Equal => 1,
+        };
+        leaving
+            .max_by(|&i, &j| {
+                let (ei, ej) = (&self.edges[i], &self.edges[j]);
+                let (ci, cj) = (class(ei), class(ej));
+                // Two turns the same way: i turns more to the left if it ends left of j.
+                ci.cmp(&cj).then_with(|| match ci {
+                    0 | 2 => group.side(ei.to_at, group.line(ej)),
+                    _ => Ordering::Equal,
+                })
+            })
+            .expect("an edge leaves every boundary vertex")
+    }
+
+    /// Does `e`, leaving the end of `arrive` along the same line, run back the way `arrive`
+    /// came? Exact: compared with a line through their common point that crosses theirs.
+    fn goes_back(&self, group: &Group, arrive: &Edge, e: &Edge) -> bool {
+        group
+            .crossing_line(arrive.to_at, arrive.from_at)
+            .is_some_and(|(m, s)| group.side(e.to_at, m) == s)
+    }
+}
+
+/// Disjoint sets of `0..n`, with path halving.
+pub(super) struct UnionFind {
+    parent: Vec<usize>,
+}
+
+impl UnionFind {
+    pub(super) fn new(n: usize) -> Self {
+        UnionFind {
+            parent: (0..n).collect(),
+        }
+    }
+
+    pub(super) fn find(&mut self, mut i: usize) -> usize {
+        while self.parent[i] != i {
+            self.parent[i] = self.parent[self.parent[i]];
+            i = self.parent[i];
+        }
+        i
+    }
+
+    pub(super) fn union(&mut self, a: usize, b: usize) {
+        let (a, b) = (self.find(a), self.find(b));
+        // The smaller root wins: roots, and so the order of components, do not depend on the
+        // order of the unions.
+        if a != b {
+            self.parent[a.max(b)] = a.min(b);
+        }
+    }
+}
+
+#[cfg(test)]
+pub(super) mod tests {
+    use super::*;
+    use crate::exact::polygon::{Boundary, Split};
+    use crate::exact::{GridPoint, Plane};
+
+    /// A piece of polygon `poly` in the plane z = 0 with these grid corners (counter-clockwise,
+    /// y up), each side an outline side.
+    pub(in crate::draw) fn grid_piece(poly: u32, corners: &[[i32; 2]]) -> Piece {
+        let gp: Vec<GridPoint> = corners
+            .iter()
+            .map(|&[x, y]| GridPoint { x, y, z: 0 })
+            .collect();
+        let support = Plane {
+            a: 0,
+            b: 0,
+            c: 1,
+            d: 0,
+        };
+        Piece::from_convex(poly, support, &gp, |side| Boundary::Outline {
+            poly,
+            side: side as u32,
+        })
+    }
+
+    /// A 2^23-pixel-wide image: pixels are grid units up to an offset ([`to_grid`]).
+    pub(in crate::draw) fn grid_samples() -> Samples {
+        Samples::new(1 << 23, 1 << 23)
+    }
+
+    /// Pixels of [`grid_samples`] back to grid units (exact for grid points).
+    pub(in crate::draw) fn to_grid([c, r]: [f64; 2]) -> [f64; 2] {
+        [c - (1 << 22) as f64, (1 << 22) as f64 - r]
+    }
+
+    /// Rings in grid units.
+    type Rings = Vec<Vec<[f64; 2]>>;
+
+    /// The regions of all `pieces` as one group: per region, its pieces and its rings in grid
+    /// units, each ring started at its smallest point (y, then x), as the merge gives them.
+    fn merged(pieces: &[Piece]) -> Vec<(Vec<usize>, Rings)> {
+        let vertices = shared_vertices(pieces, &grid_samples());
+        let all: Vec<usize> = (0..pieces.len()).collect();
+        merge(pieces, &vertices, &all)
+            .into_iter()
+            .map(|m| {
+                let rings = m
+                    .rings
+                    .into_iter()
+                    .map(|r| {
+                        let mut r: Vec<[f64; 2]> = r.into_iter().map(to_grid).collect();
+                        let k = (0..r.len())
+                            .min_by(|&a, &b| cmp_points(&r[a], &r[b]))
+                            .unwrap();
+                        r.rotate_left(k);
+                        r
+                    })
+                    .collect();
+                (m.members, rings)
+            })
+            .collect()
+    }
+
+    /// The rings of the regions, without the pieces.
+    fn rings(pieces: &[Piece]) -> Vec<Rings> {
+        merged(pieces).into_iter().map(|m| m.1).collect()
+    }
+
+    fn rect(poly: u32, [x0, y0, x1, y1]: [i32; 4]) -> Piece {
+        grid_piece(poly, &[[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
+    }
+
+    /// Rings of grid points as the merge gives them in grid units.
+    fn ring_set(rings: &[&[[i32; 2]]]) -> Rings {
+        rings
+            .iter()
+            .map(|r| r.iter().map(|p| p.map(f64::from)).collect())
+            .collect()
+    }
+
+    /// One region with these rings ([`ring_set`]).
+    fn region(rings: &[&[[i32; 2]]]) -> Vec<Rings> {
+        vec![ring_set(rings)]
+    }
+
+    /// Rectangles (x0, y0, x1, y1) of polygon 0.
+    fn rects(boxes: &[[i32; 4]]) -> Vec<Piece> {
+        boxes.iter().map(|&b| rect(0, b)).collect()
+    }
+
+    #[test]
+    fn a_square_cut_three_ways_merges_to_its_four_corners() {
+        let quadrants = rects(&[[0, 0, 4, 4], [4, 0, 8, 4], [4, 4, 8, 8], [0, 4, 4, 8]]);
+        // A T-junction: the right strip's cut ends inside the left strip's edge.
+        let strips = rects(&[[0, 0, 3, 8], [3, 0, 8, 5], [3, 5, 8, 8]]);
+        let fan = [
+            grid_piece(0, &[[0, 0], [8, 0], [4, 4]]),
+            grid_piece(0, &[[8, 0], [8, 8], [4, 4]]),
+            grid_piece(0, &[[8, 8], [0, 8], [4, 4]]),
+            grid_piece(0, &[[0, 8], [0, 0], [4, 4]]),
+        ];
+        let square = region(&[&[[0, 0], [8, 0], [8, 8], [0, 8]]]);
+        assert_eq!(rings(&quadrants), square);
+        assert_eq!(rings(&strips), square);
+        assert_eq!(rings(&fan), square);
+        assert_eq!(merged(&strips)[0].0, vec![0, 1, 2]);
+    }
+
+    /// `pieces` each cut by every line through two grid points in `cuts`.
+    fn cut(pieces: Vec<Piece>, cuts: &[[[i32; 2]; 2]]) -> Vec<Piece> {
+        let g = |[x, y]: [i32; 2]| GridPoint { x, y, z: 0 };
+        cuts.iter().fold(pieces, |pieces, &[a, b]| {
+            let l = Line::Edge(Plane::edge(g(a), g(b)).unwrap());
+            pieces
+                .into_iter()
+                .flat_map(|p| match p.split_by_line(&l, Boundary::ScreenSplit) {
+                    Split::Both(a, b) => vec![a, b],
+                    _ => vec![p],
+                })
                 .collect()
         })
-        .collect()
+    }
+
+    #[test]
+    fn a_quad_cut_across_its_slanted_sides_merges_to_its_four_corners_however_cut() {
+        // The cuts cross the slanted sides between grid points: the pieces' vertices there are
+        // rounded, and off the sides in f64, yet exactly on them.
+        let quad = || vec![grid_piece(0, &[[0, 0], [70, 10], [90, 80], [10, 60]])];
+        let once = cut(quad(), &[[[33, -5], [41, 100]]]);
+        let thrice = cut(
+            quad(),
+            &[
+                [[20, -5], [60, 100]],
+                [[-5, 30], [100, 45]],
+                [[0, 100], [100, 3]],
+            ],
+        );
+        assert_eq!((once.len(), thrice.len()), (2, 7));
+        let corners = region(&[&[[0, 0], [70, 10], [90, 80], [10, 60]]]);
+        assert_eq!(rings(&once), corners);
+        assert_eq!(rings(&thrice), corners);
+    }
+
+    #[test]
+    fn an_l_shape_cut_three_ways_merges_to_its_six_corners() {
+        let wide_bottom = rects(&[[0, 0, 8, 4], [0, 4, 4, 8]]);
+        let tall_left = rects(&[[0, 0, 4, 8], [4, 0, 8, 4]]);
+        let squares = rects(&[[4, 0, 8, 4], [0, 4, 4, 8], [0, 0, 4, 4]]);
+        let l = region(&[&[[0, 0], [8, 0], [8, 4], [4, 4], [4, 8], [0, 8]]]);
+        assert_eq!(rings(&wide_bottom), l);
+        assert_eq!(rings(&tall_left), l);
+        assert_eq!(rings(&squares), l);
+    }
+
+    #[test]
+    fn a_ring_cut_three_ways_merges_to_an_outer_ring_and_a_hole() {
+        let bands = rects(&[[0, 0, 6, 2], [0, 4, 6, 6], [0, 2, 2, 4], [4, 2, 6, 4]]);
+        let pinwheel = rects(&[[0, 0, 4, 2], [4, 0, 6, 4], [2, 4, 6, 6], [0, 2, 2, 6]]);
+        let trapezoids = [
+            grid_piece(0, &[[0, 0], [6, 0], [4, 2], [2, 2]]),
+            grid_piece(0, &[[6, 0], [6, 6], [4, 4], [4, 2]]),
+            grid_piece(0, &[[6, 6], [0, 6], [2, 4], [4, 4]]),
+            grid_piece(0, &[[0, 6], [0, 0], [2, 2], [2, 4]]),
+        ];
+        // Outer ring counter-clockwise (y up), the hole clockwise: the interior on the left.
+        let ring = region(&[
+            &[[0, 0], [6, 0], [6, 6], [0, 6]],
+            &[[2, 2], [2, 4], [4, 4], [4, 2]],
+        ]);
+        assert_eq!(rings(&bands), ring);
+        assert_eq!(rings(&pinwheel), ring);
+        assert_eq!(rings(&trapezoids), ring);
+    }
+
+    #[test]
+    fn squares_touching_at_a_corner_are_two_regions_however_cut() {
+        let whole = rects(&[[0, 0, 4, 4], [4, 4, 8, 8]]);
+        let halves = [
+            grid_piece(0, &[[4, 4], [8, 4], [8, 8]]),
+            grid_piece(0, &[[0, 0], [4, 0], [0, 4]]),
+            grid_piece(0, &[[4, 0], [4, 4], [0, 4]]),
+            grid_piece(0, &[[4, 4], [8, 8], [4, 8]]),
+        ];
+        // Regions in the order of their topmost vertex on screen (y down).
+        let two = vec![
+            ring_set(&[&[[4, 4], [8, 4], [8, 8], [4, 8]]]),
+            ring_set(&[&[[0, 0], [4, 0], [4, 4], [0, 4]]]),
+        ];
+        assert_eq!(rings(&whole), two);
+        assert_eq!(rings(&halves), two);
+        let members: Vec<Vec<usize>> = merged(&halves).into_iter().map(|m| m.0).collect();
+        assert_eq!(members, vec![vec![0, 3], vec![1, 2]]);
+    }
+
+    #[test]
+    fn a_hole_touching_the_outer_boundary_is_one_ring_through_the_pinch_however_cut() {
+        // A 6x6 square less the triangle (3,0), (4,2), (2,2), which touches its bottom side.
+        let three = [
+            grid_piece(0, &[[0, 0], [3, 0], [2, 2], [0, 2]]),
+            grid_piece(0, &[[3, 0], [6, 0], [6, 2], [4, 2]]),
+            rect(0, [0, 2, 6, 6]),
+        ];
+        let five = [
+            grid_piece(0, &[[0, 0], [3, 0], [2, 2]]),
+            grid_piece(0, &[[0, 0], [2, 2], [0, 2]]),
+            grid_piece(0, &[[3, 0], [6, 0], [6, 2], [4, 2]]),
+            rect(0, [0, 2, 3, 6]),
+            rect(0, [3, 2, 6, 6]),
+        ];
+        // The walk turns most to the left at the pinch (3, 0): it takes the hole on the way.
+        let pinched = region(&[&[
+            [0, 0],
+            [3, 0],
+            [2, 2],
+            [4, 2],
+            [3, 0],
+            [6, 0],
+            [6, 6],
+            [0, 6],
+        ]]);
+        assert_eq!(rings(&three), pinched);
+        assert_eq!(rings(&five), pinched);
+    }
+
+    #[test]
+    fn a_point_named_by_different_lines_rounds_to_the_same_bits() {
+        // Three lines through (10/3, 10/3): y = x, x + 2y = 10 and 2x + y = 10.
+        let line = |a: [i32; 2], b: [i32; 2]| {
+            let g = |[x, y]: [i32; 2]| GridPoint { x, y, z: 0 };
+            Line::Edge(Plane::edge(g(a), g(b)).unwrap())
+        };
+        let lines = [
+            line([0, 0], [1, 1]),
+            line([10, 0], [0, 5]),
+            line([5, 0], [0, 10]),
+        ];
+        let third = 10.0 / 3.0;
+        for (i, l) in lines.iter().enumerate() {
+            for m in &lines[i + 1..] {
+                assert_eq!(exact_crossing(l, m), Some([third, third]));
+            }
+        }
+        // Cut a square by the three lines: every piece's vertex there has the same pixels.
+        let mut pieces = vec![rect(0, [0, 0, 10, 10])];
+        for l in &lines {
+            pieces = pieces
+                .into_iter()
+                .flat_map(|p| match p.split_by_line(l, Boundary::ScreenSplit) {
+                    Split::Both(a, b) => vec![a, b],
+                    _ => vec![p],
+                })
+                .collect();
+        }
+        let s = Samples::new(640, 480);
+        let at_third: Vec<[f64; 2]> = pieces
+            .iter()
+            .flat_map(|p| (0..p.len()).map(move |k| (p, k)))
+            .filter(|(p, k)| {
+                let [x, y] = p.vertex_f64(*k);
+                (x - third).abs() < 1e-9 && (y - third).abs() < 1e-9
+            })
+            .map(|(p, k)| vertex_pixel(p, k, &s))
+            .collect();
+        assert_eq!(at_third.len(), 6);
+        assert!(
+            at_third
+                .iter()
+                .all(|p| *p == [s.col_of(third), s.row_of(third)])
+        );
+    }
+
+    #[test]
+    fn ratios_are_correctly_rounded() {
+        let big = |v: i128| -> I512 { v.as_() };
+        // Below 2^53 both are exact in f64, and IEEE division rounds correctly.
+        let mut seed = 7u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for _ in 0..10_000 {
+            let n = (next() >> 11) as i128 - (1 << 52);
+            let d = ((next() >> 11) as i128 | 1) * if next() & 1 == 0 { 1 } else { -1 };
+            assert_eq!(ratio_f64(big(n), big(d)), n as f64 / d as f64, "{n} / {d}");
+            // Scaling both by a power of two changes nothing.
+            let shift = (next() % 300) as u32;
+            assert_eq!(
+                ratio_f64(big(n) << shift, big(d) << shift),
+                n as f64 / d as f64
+            );
+        }
+        // Ties go to even: 2^53 + 1 lies halfway between 2^53 and 2^53 + 2.
+        let t = 1i128 << 53;
+        assert_eq!(ratio_f64(big(t + 1), big(1)), t as f64);
+        assert_eq!(ratio_f64(big(t + 3), big(1)), (t + 4) as f64);
+        // Just above the tie rounds up, just below rounds down.
+        assert_eq!(ratio_f64(big(2 * t + 3), big(2)), (t + 2) as f64);
+        assert_eq!(ratio_f64(big(2 * t + 1), big(2)), t as f64);
+        assert_eq!(ratio_f64(big(0), big(-5)), 0.0);
+    }
 }

@@ -10,6 +10,7 @@
 //! from the pieces' implicit vertices; only the endpoints written out are rounded (to pixels).
 //! Boundaries against nothing (the silhouette) or between pieces of one group are never returned.
 
+use super::regions::UnionFind;
 use crate::exact::polygon::Piece;
 use crate::visibility::coverage::bounds;
 use crate::visibility::grid::for_each_near;
@@ -23,11 +24,15 @@ pub struct SharedEdge {
     pub pieces: [usize; 2],
     /// Endpoints in pixels (y down), rounded once from the exact vertices.
     pub ends: [[f64; 2]; 2],
+    /// The exact endpoints: each a vertex (piece, vertex index) of one of the two pieces.
+    pub vertices: [(usize, usize); 2],
+    /// The segment runs along line `.1` of piece `.0` (the first piece).
+    pub line: (usize, usize),
 }
 
 /// The boundary segments shared by pieces of different groups (`group(i)` of piece i), in
 /// piece order. `pieces` must have pairwise disjoint interiors (a visible set); `vertices` are
-/// their [`shared_vertex_pixels`], so that one exact vertex has the same bits in every piece.
+/// their [`shared_vertices`]' pixels, so that one exact vertex has the same bits in every piece.
 ///
 /// Two passes. Whole edges first: an edge of one piece whose ends are, the other way round,
 /// the ends of an edge of another is shared whole (the same exact vertices have the same
@@ -36,7 +41,7 @@ pub struct SharedEdge {
 /// same line, decided exactly, and the part they share runs between the ends of each that lie
 /// in the other piece.
 ///
-/// [`shared_vertex_pixels`]: super::regions::shared_vertex_pixels
+/// [`shared_vertices`]: super::regions::shared_vertices
 pub fn shared_edges(
     pieces: &[Piece],
     vertices: &[Vec<[f64; 2]>],
@@ -75,6 +80,8 @@ pub fn shared_edges(
                     out.push(SharedEdge {
                         pieces: [a, b],
                         ends: [p, q],
+                        vertices: [(a, k), (a, (k + 1) % vertices[a].len())],
+                        line: (a, k),
                     });
                 }
             }
@@ -88,14 +95,13 @@ pub fn shared_edges(
             .filter(|&&b| b > a && group(b) != group(a) && open(b))
         {
             for k in (0..pieces[a].len()).filter(|&k| !whole[a][k]) {
-                let (pa, pb) = (
-                    (&pieces[a], &vertices[a][..]),
-                    (&pieces[b], &vertices[b][..]),
-                );
+                let (pa, pb) = ((a, &pieces[a]), (b, &pieces[b]));
                 if let Some(ends) = shared_part(pa, k, pb, &whole[b]) {
                     out.push(SharedEdge {
                         pieces: [a, b],
-                        ends,
+                        ends: ends.map(|(i, v)| vertices[i][v]),
+                        vertices: ends,
+                        line: (a, k),
                     });
                     // Two disjoint convex pieces share at most one segment.
                     break;
@@ -106,15 +112,75 @@ pub fn shared_edges(
     out
 }
 
-/// The segment of positive length that edge k of piece `a` shares with an edge of piece `b`
-/// not shared whole elsewhere (`b_whole`), with the ends taken from the pieces' vertices in
-/// pixels (`va`, `vb`). `a` and `b` have disjoint interiors.
+/// `edges` (of one stroke) with the segments that continue each other joined: two segments
+/// meeting at an exact vertex, the other end of one on the other's kernel line, are one
+/// segment. Pieces cut a boundary at points of their own (the BSP's screen splits, the
+/// coverage map's splits); joined, the segments are the maximal straight runs of the point set
+/// the edges cover, whatever the cut. `ids` are the pieces' vertex ids
+/// ([`super::regions::Vertices`]).
+pub fn straight_runs(
+    edges: &[&SharedEdge],
+    pieces: &[Piece],
+    ids: &[Vec<u32>],
+) -> Vec<[[f64; 2]; 2]> {
+    let id = |(p, v): (usize, usize)| ids[p][v];
+    // Every segment end, by vertex id.
+    let mut ends: Vec<(u32, usize, usize)> = edges
+        .iter()
+        .enumerate()
+        .flat_map(|(s, e)| [(id(e.vertices[0]), s, 0), (id(e.vertices[1]), s, 1)])
+        .collect();
+    ends.sort_unstable();
+    let mut runs = UnionFind::new(edges.len());
+    for meeting in ends.chunk_by(|a, b| a.0 == b.0) {
+        for (i, &(_, s, _)) in meeting.iter().enumerate() {
+            for &(_, t, end) in &meeting[i + 1..] {
+                let (lp, l) = edges[s].line;
+                let (fp, fv) = edges[t].vertices[1 - end];
+                let (line, approx) = (&pieces[lp].lines[l], &pieces[lp].line_approx[l]);
+                if pieces[fp].vertex_line_sign_with(fv, line, approx) == Ordering::Equal {
+                    runs.union(s, t);
+                }
+            }
+        }
+    }
+    let mut order: Vec<(usize, usize)> = (0..edges.len()).map(|s| (runs.find(s), s)).collect();
+    order.sort_unstable();
+    let mut out = Vec::with_capacity(edges.len());
+    for run in order.chunk_by(|a, b| a.0 == b.0) {
+        if let [(_, s)] = run {
+            out.push(edges[*s].ends);
+            continue;
+        }
+        // A path of segments along one line: its ends are the vertices met once.
+        let mut points: Vec<(u32, [f64; 2])> = run
+            .iter()
+            .flat_map(|&(_, s)| [0, 1].map(|k| (id(edges[s].vertices[k]), edges[s].ends[k])))
+            .collect();
+        points.sort_by_key(|p| p.0);
+        let once: Vec<[f64; 2]> = points
+            .chunk_by(|a, b| a.0 == b.0)
+            .filter(|c| c.len() == 1)
+            .map(|c| c[0].1)
+            .collect();
+        match once[..] {
+            [p, q] => out.push([p, q]),
+            // Not a path (only overlapping input): its segments as they are.
+            _ => out.extend(run.iter().map(|&(_, s)| edges[s].ends)),
+        }
+    }
+    out
+}
+
+/// The segment of positive length that edge k of piece `a` (index `ia`) shares with an edge of
+/// piece `b` (index `ib`) not shared whole elsewhere (`b_whole`), its ends as (piece index,
+/// vertex) of the pieces' vertices. `a` and `b` have disjoint interiors.
 fn shared_part(
-    (a, va): (&Piece, &[[f64; 2]]),
+    (ia, a): (usize, &Piece),
     k: usize,
-    (b, vb): (&Piece, &[[f64; 2]]),
+    (ib, b): (usize, &Piece),
     b_whole: &[bool],
-) -> Option<[[f64; 2]; 2]> {
+) -> Option<[(usize, usize); 2]> {
     let (na, nb) = (a.len(), b.len());
     let (line, approx) = (&a.lines[k], &a.line_approx[k]);
     // An edge j of b on a's line k: both of its ends on that line (a strictly convex piece has
@@ -137,59 +203,34 @@ fn shared_part(
     let from_b = [j, (j + 1) % nb]
         .into_iter()
         .filter(|&w| in_closed(b, w, a) && !from_a.iter().any(|&v| a.same_vertex(v, b, w)));
-    let ends: Vec<[f64; 2]> = from_a
+    let ends: Vec<(usize, usize)> = from_a
         .iter()
-        .map(|&v| va[v])
-        .chain(from_b.map(|w| vb[w]))
+        .map(|&v| (ia, v))
+        .chain(from_b.map(|w| (ib, w)))
         .collect();
-    // Exactly distinct points on one line: the farthest two (in f64, which only picks among
-    // them) bound the shared part.
-    let mut best: Option<([[f64; 2]; 2], f64)> = None;
-    for (i, p) in ends.iter().enumerate() {
-        for q in &ends[i + 1..] {
-            let d = (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
-            if best.is_none_or(|(_, bd)| d > bd) {
-                best = Some(([*p, *q], d));
-            }
-        }
+    // Exactly distinct points on one line, at most two of them: a convex piece's edge holds
+    // at most one end of the other's collinear edge strictly inside, and an end of both counts
+    // once. Three would mean an end of each edge inside the other, impossible for disjoint
+    // pieces on opposite sides of the line.
+    match ends[..] {
+        [p, q] => Some([p, q]),
+        _ => None,
     }
-    best.map(|(e, _)| e)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::draw::regions::shared_vertex_pixels;
-    use crate::exact::polygon::Boundary;
-    use crate::exact::{GridPoint, Plane, Samples};
-
-    fn piece(poly: u32, corners: &[[i32; 2]]) -> Piece {
-        let gp: Vec<GridPoint> = corners
-            .iter()
-            .map(|&[x, y]| GridPoint { x, y, z: 0 })
-            .collect();
-        let support = Plane {
-            a: 0,
-            b: 0,
-            c: 1,
-            d: 0,
-        };
-        Piece::from_convex(poly, support, &gp, |side| Boundary::Outline {
-            poly,
-            side: side as u32,
-        })
-    }
+    use crate::draw::regions::shared_vertices;
+    use crate::draw::regions::tests::{grid_piece as piece, grid_samples, to_grid};
 
     /// The shared segments as (pieces, ends in grid units, ends sorted).
     fn shared(pieces: &[Piece], group: impl Fn(usize) -> u32) -> Vec<([usize; 2], [[f64; 2]; 2])> {
-        // A 2^23-pixel-wide image makes pixels and grid units the same up to an offset.
-        let s = Samples::new(1 << 23, 1 << 23);
-        let vertices = shared_vertex_pixels(pieces, &s);
-        let grid = |[c, r]: [f64; 2]| [c - (1 << 22) as f64, (1 << 22) as f64 - r];
+        let vertices = shared_vertices(pieces, &grid_samples()).pixels;
         let mut out: Vec<_> = shared_edges(pieces, &vertices, group)
             .into_iter()
             .map(|e| {
-                let mut ends = e.ends.map(grid);
+                let mut ends = e.ends.map(to_grid);
                 ends.sort_by(|x, y| x.partial_cmp(y).unwrap());
                 (e.pieces, ends)
             })
@@ -244,6 +285,47 @@ mod tests {
         assert_eq!(
             shared(&pieces, |i| i as u32),
             vec![([0, 1], [[4.0, 0.0], [4.0, 2.0]])]
+        );
+    }
+
+    /// The stroke segments of `pieces` (one colour), grid units, each from its smaller end.
+    fn runs(pieces: &[Piece], group: impl Fn(usize) -> u32) -> Vec<[[f64; 2]; 2]> {
+        let vertices = shared_vertices(pieces, &grid_samples());
+        let edges = shared_edges(pieces, &vertices.pixels, group);
+        let edges: Vec<&SharedEdge> = edges.iter().collect();
+        let mut out: Vec<[[f64; 2]; 2]> = straight_runs(&edges, pieces, &vertices.ids)
+            .into_iter()
+            .map(|e| {
+                let mut e = e.map(to_grid);
+                e.sort_by(|x, y| x.partial_cmp(y).unwrap());
+                e
+            })
+            .collect();
+        out.sort_by(|x, y| x.partial_cmp(y).unwrap());
+        out
+    }
+
+    #[test]
+    fn a_seam_is_one_segment_however_its_sides_are_cut() {
+        let a = || piece(0, &[[0, 0], [4, 0], [4, 4], [0, 4]]);
+        let whole = [a(), piece(1, &[[4, 0], [8, 0], [8, 4], [4, 4]])];
+        let cut = [
+            a(),
+            piece(1, &[[4, 0], [8, 0], [8, 1], [4, 1]]),
+            piece(1, &[[4, 1], [8, 1], [8, 4], [4, 4]]),
+        ];
+        let right = vec![[[4.0, 0.0], [4.0, 4.0]]];
+        assert_eq!(runs(&whole, |i| (i > 0) as u32), right);
+        assert_eq!(runs(&cut, |i| (i > 0) as u32), right);
+        // Segments meeting at a corner are two runs.
+        let corner = [
+            a(),
+            piece(1, &[[4, 0], [8, 0], [8, 4], [4, 4]]),
+            piece(2, &[[0, 4], [4, 4], [4, 8], [0, 8]]),
+        ];
+        assert_eq!(
+            runs(&corner, |i| (i > 0) as u32),
+            vec![[[0.0, 4.0], [4.0, 4.0]], [[4.0, 0.0], [4.0, 4.0]]]
         );
     }
 }

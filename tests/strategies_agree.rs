@@ -1,0 +1,83 @@
+//! Two exact strategies compute the same visible point set, cut into different convex pieces;
+//! the drawing stage must write the same bytes for both (issue 9, point 5). Checked on every
+//! fixture from two views and on generated scenes: the SVG picture (surfaces merged, seams
+//! stroked) byte for byte, and the per-face JSON byte for byte apart from its run statistics.
+
+mod support;
+
+use sightline::camera::{Camera, NamedView};
+use sightline::draw::DrawOptions;
+use sightline::output::json::write_json;
+use sightline::output::svg::{SvgOptions, write_svg};
+use sightline::pipeline::{Fill, prepare};
+use sightline::project::CullMode;
+use sightline::scene::Scene;
+use sightline::scene::primitives::{interlocked_tori, interpenetrating_tori, random_triangle_soup};
+use sightline::visibility::BspTree;
+use support::camera::{fit, named_view};
+use support::fixtures::fixture_paths;
+use support::strategy::{CoverageMap, Strategy, drawing_of};
+
+/// (SVG of the picture, JSON of the per-face drawing without statistics) by `strategy`.
+fn outputs(strategy: &dyn Strategy, scene: &Scene, camera: &Camera) -> (String, String) {
+    let prepared = prepare(scene, camera, CullMode::Auto);
+    let screen = &prepared.screen;
+    let draw = |options| drawing_of(strategy, scene, screen, camera, Fill::Shade, options).drawing;
+    let mut picture = draw(DrawOptions::picture());
+    picture.background = Some([1.0; 3]);
+    let svg = write_svg(&picture, &SvgOptions::default());
+    let json = write_json(&draw(DrawOptions::per_face()), scene, &Default::default());
+    (svg, json)
+}
+
+/// Asserts that the coverage map and the BSP write the same SVG and JSON for `scene` seen by
+/// `camera`; returns whether anything was drawn.
+fn assert_same_bytes(name: &str, scene: &Scene, camera: &Camera) -> bool {
+    let (svg_c, json_c) = outputs(&CoverageMap, scene, camera);
+    let (svg_b, json_b) = outputs(&BspTree, scene, camera);
+    assert!(
+        svg_c == svg_b,
+        "{name}: SVGs differ\ncoverage: {svg_c}\nbsp:      {svg_b}"
+    );
+    assert!(
+        json_c == json_b,
+        "{name}: JSONs differ\ncoverage: {json_c}\nbsp:      {json_b}"
+    );
+    svg_c.contains("data-face")
+}
+
+#[test]
+fn coverage_and_bsp_write_the_same_bytes_on_every_fixture() {
+    let mut drawn = 0;
+    for path in fixture_paths() {
+        let scene = sightline::load(&path, None).unwrap();
+        for view in [NamedView::Front, NamedView::Iso] {
+            let camera = named_view(&scene, view, (96, 72));
+            let name = format!("{} {view:?}", path.display());
+            drawn += assert_same_bytes(&name, &scene, &camera) as usize;
+        }
+    }
+    assert!(drawn >= 20, "only {drawn} renders drew anything");
+}
+
+#[test]
+fn coverage_and_bsp_write_the_same_bytes_on_generated_scenes() {
+    let scenes = [
+        ("interlocked tori", interlocked_tori(16, 8)),
+        ("interpenetrating tori", interpenetrating_tori(12, 6)),
+    ];
+    for (name, scene) in &scenes {
+        for (view, ortho) in [(NamedView::Iso, false), (NamedView::Front, true)] {
+            let camera = fit(scene, view, ortho, 120, 90);
+            assert!(assert_same_bytes(name, scene, &camera), "{name}: empty");
+        }
+    }
+    for seed in 1..=4 {
+        let scene = random_triangle_soup(24, seed);
+        let name = format!("triangle soup seed {seed}");
+        for (view, ortho) in [(NamedView::Iso, false), (NamedView::Front, true)] {
+            let camera = fit(&scene, view, ortho, 100, 80);
+            assert!(assert_same_bytes(&name, &scene, &camera), "{name}: empty");
+        }
+    }
+}
