@@ -93,6 +93,35 @@ fn check_scene(scene: &Scene, camera: &Camera) -> [usize; 4] {
     seen
 }
 
+/// One face in the plane z = 0 with corners `pts`, and an orthographic camera looking at it
+/// head-on, framing it, `size` pixels square.
+fn flat_face(pts: &[[f64; 2]], size: u32) -> (Scene, Camera) {
+    let mut b = SceneBuilder::new("face");
+    let m = b.add_material(Material::default());
+    b.begin_mesh("face");
+    let v: Vec<u32> = pts
+        .iter()
+        .map(|&[x, y]| b.add_vertex(DVec3::new(x, y, 0.0)))
+        .collect();
+    b.add_face(&v, m);
+    let scene = b.finish().unwrap();
+    let (lo, hi) = scene.bounds().unwrap();
+    let centre = (lo + hi) / 2.0;
+    let camera = Camera {
+        eye: centre + DVec3::Z * 5.0,
+        target: centre,
+        up: DVec3::Y,
+        projection: Projection::Orthographic {
+            height: (hi - lo).max_element() + 1.0,
+        },
+        near: 1.0,
+        far: 10.0,
+        width: size,
+        height: size,
+    };
+    (scene, camera)
+}
+
 fn iso(scene: &Scene, size: u32) -> Camera {
     Camera::fit(
         NamedView::Iso,
@@ -144,33 +173,17 @@ fn boundaries_name_their_lines_on_tori_and_fixtures() {
 /// never as an edge of the face.
 #[test]
 fn a_non_convex_face_has_a_diagonal_boundary() {
-    let mut b = SceneBuilder::new("l");
-    let m = b.add_material(Material::default());
-    b.begin_mesh("l");
-    let pts = [
-        [0.0, 0.0],
-        [2.0, 0.0],
-        [2.0, 1.0],
-        [1.0, 1.0],
-        [1.0, 2.0],
-        [0.0, 2.0],
-    ];
-    let v: Vec<u32> = pts
-        .iter()
-        .map(|&[x, y]| b.add_vertex(DVec3::new(x, y, 0.0)))
-        .collect();
-    b.add_face(&v, m);
-    let scene = b.finish().unwrap();
-    let camera = Camera {
-        eye: DVec3::new(1.0, 1.0, 5.0),
-        target: DVec3::new(1.0, 1.0, 0.0),
-        up: DVec3::Y,
-        projection: Projection::Orthographic { height: 3.0 },
-        near: 1.0,
-        far: 10.0,
-        width: 32,
-        height: 32,
-    };
+    let (scene, camera) = flat_face(
+        &[
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 2.0],
+            [0.0, 2.0],
+        ],
+        32,
+    );
     let seen = check_scene(&scene, &camera);
     assert!(seen[1] > 0, "{seen:?}");
     assert_eq!(seen[2], 0, "one face: no cuts");
@@ -232,39 +245,23 @@ fn sides_of_screen_polygons_name_face_edges_and_clip_planes() {
 /// its boundary names.
 #[test]
 fn outline_sides_do_not_run_on_into_diagonals() {
-    let mut b = SceneBuilder::new("notched");
-    let m = b.add_material(Material::default());
-    b.begin_mesh("notched");
-    let pts = [
-        [0.0, 0.0],
-        [1.0, 0.0],
-        [2.0, 0.0],
-        [3.0, 0.0],
-        [4.0, 0.0],
-        [4.0, 3.0],
-        [3.0, 3.0],
-        [3.0, 1.0],
-        [2.0, 1.0],
-        [2.0, 2.0],
-        [1.0, 2.0],
-        [0.0, 2.0],
-    ];
-    let v: Vec<u32> = pts
-        .iter()
-        .map(|&[x, y]| b.add_vertex(DVec3::new(x, y, 0.0)))
-        .collect();
-    b.add_face(&v, m);
-    let scene = b.finish().unwrap();
-    let camera = Camera {
-        eye: DVec3::new(2.0, 1.5, 5.0),
-        target: DVec3::new(2.0, 1.5, 0.0),
-        up: DVec3::Y,
-        projection: Projection::Orthographic { height: 4.0 },
-        near: 1.0,
-        far: 10.0,
-        width: 64,
-        height: 64,
-    };
+    let (scene, camera) = flat_face(
+        &[
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 0.0],
+            [3.0, 0.0],
+            [4.0, 0.0],
+            [4.0, 3.0],
+            [3.0, 3.0],
+            [3.0, 1.0],
+            [2.0, 1.0],
+            [2.0, 2.0],
+            [1.0, 2.0],
+            [0.0, 2.0],
+        ],
+        64,
+    );
     let screen = prepare(&scene, &camera, CullMode::Off).screen;
     let c = screen.corners(&screen.polys[0]);
     let n = c.len();
