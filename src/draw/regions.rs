@@ -14,8 +14,10 @@
 //!   between vertex ids. An edge shared by two pieces runs both ways and cancels; the rest is
 //!   the boundary of the union, each edge with the interior on its left. A boundary vertex
 //!   where the boundary runs straight on (the next vertex lies on the incoming edge's kernel
-//!   line, exactly) is dropped: what is left are the true corners and the points where the
-//!   boundary touches itself, which belong to the point set, not to the cut.
+//!   line, exactly) is dropped unless another boundary edge of the group meets it there: what
+//!   is left are the true corners and the points where the group's boundary touches itself
+//!   (within a region or between two regions of the group), which belong to the point set, not
+//!   to the cut.
 //! - **Cycles**: at a vertex with several outgoing boundary edges (the boundary touches itself
 //!   there), the walk takes the one that turns most to the left, decided exactly. This walks
 //!   the boundary of one connected interior at a time: two squares touching at a corner are
@@ -49,7 +51,9 @@ pub struct Region {
     /// Index of the piece of its smallest face id (then smallest polygon), whose face paints
     /// it.
     pub piece: usize,
-    /// Outer ring, then holes; pixel coordinates, y down; even-odd.
+    /// Rings, pixel coordinates, y down; even-odd. The first is the ring holding the smallest
+    /// (y, x) rounded vertex, the outer ring unless a hole's top vertex rounds onto the outer
+    /// ring's top row further left; [`crate::output::canonical`] decides holes by containment.
     pub rings: Vec<Vec<[f64; 2]>>,
 }
 
