@@ -2,7 +2,7 @@
 //! The CLI, the tests and the benchmarks all go through here, so they run the same code.
 
 use crate::camera::Camera;
-use crate::paint::{screen_paints, to_u8};
+use crate::paint::{Paint, screen_paints, to_u8};
 use crate::project::{CullMode, ScreenScene, project};
 use crate::raster::{EMPTY, ZBuffer, zbuffer};
 use crate::scene::Scene;
@@ -58,11 +58,23 @@ pub fn colorize_polys(
     fill: Fill,
     background: [u8; 3],
 ) -> Vec<[u8; 3]> {
-    // One colour per screen polygon, computed once.
-    let colors: Vec<[u8; 3]> = screen_paints(scene, screen, camera, fill)
-        .into_iter()
-        .map(|p| to_u8(p.color))
-        .collect();
+    colorize_painted(
+        &screen_paints(scene, screen, camera, fill),
+        poly,
+        fill,
+        background,
+    )
+}
+
+/// [`colorize_polys`] with the polygons' paints already made ([`screen_paints`]).
+pub fn colorize_painted(
+    paints: &[Paint],
+    poly: &[u32],
+    fill: Fill,
+    background: [u8; 3],
+) -> Vec<[u8; 3]> {
+    // One 8-bit colour per screen polygon, converted once.
+    let colors: Vec<[u8; 3]> = paints.iter().map(|p| to_u8(p.color)).collect();
     let background = match fill {
         Fill::Id => [0, 0, 0],
         Fill::Shade => background,

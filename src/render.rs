@@ -14,8 +14,8 @@ use crate::error::{Error, Result};
 use crate::methods::{self, Engine, Method, Output, names_with};
 use crate::output::drawing::Drawing;
 use crate::output::{json, png, raster_drawing, svg};
-use crate::paint::{Fill, screen_paints, to_u8};
-use crate::pipeline::colorize_polys;
+use crate::paint::{Fill, Paint, screen_paints, to_u8};
+use crate::pipeline::colorize_painted;
 use crate::progress::Report;
 use crate::project::ScreenScene;
 use crate::raster::lighting::{Lighting, Shading, Textures, shade_polys};
@@ -254,12 +254,14 @@ pub struct ImageStyle {
 /// The image (8-bit RGB, row-major, row 0 at the top) of `raster`, an image-space method's
 /// result for `screen`: its blended colours where it blended (the A-buffer); else, when
 /// shading per pixel or with textures, the lighting model along the ray through each pixel
-/// centre ([`shade_polys`]); else each polygon's flat paint ([`colorize_polys`]). A texture that
-/// cannot be read is a warning (its faces are drawn untextured).
+/// centre ([`shade_polys`]); else each polygon's flat paint (`paints[k]` for `screen.polys[k]`,
+/// [`colorize_painted`]). A texture that cannot be read is a warning (its faces are drawn
+/// untextured).
 pub fn image_of(
     scene: &Scene,
     screen: &ScreenScene,
     camera: &Camera,
+    paints: &[Paint],
     raster: &Raster,
     style: ImageStyle,
     warnings: &mut Vec<String>,
@@ -285,14 +287,7 @@ pub fn image_of(
             .map(to_u8)
             .collect()
         }
-        None => colorize_polys(
-            scene,
-            screen,
-            &raster.poly,
-            camera,
-            style.fill,
-            style.background,
-        ),
+        None => colorize_painted(paints, &raster.poly, style.fill, style.background),
     }
 }
 
@@ -393,7 +388,15 @@ pub fn render(
                 shading: options.shading,
                 background: background_rgb,
             };
-            let rgb = image_of(scene, screen, camera, &raster, style, &mut warnings);
+            let rgb = image_of(
+                scene,
+                screen,
+                camera,
+                &paints,
+                &raster,
+                style,
+                &mut warnings,
+            );
             (Body::Pixels(rgb), raster.depth)
         }
         Computed::Visible(visible) => {
