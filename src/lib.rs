@@ -55,6 +55,7 @@ pub use visibility::{Strategy, VisibleSet};
 pub mod camera;
 pub mod draw;
 pub mod exact;
+pub mod lines;
 pub mod methods;
 pub mod output;
 pub mod paint;

@@ -97,6 +97,20 @@ pub enum ClipPlane {
     Guard,
 }
 
+/// How a face of the scene lies on screen, decided exactly on the snapped grid: the sign of its
+/// projected polygon's area (after clipping), as culling and every later stage see it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Orientation {
+    /// Wholly outside one plane of the view frustum (dropped before snapping).
+    Outside,
+    /// No projected area after snapping: edge-on, or smaller than the grid.
+    Flat,
+    /// Counter-clockwise on screen (y up): its corners' order turns left.
+    Ccw,
+    /// Clockwise on screen.
+    Cw,
+}
+
 /// All faces of a scene on screen, for one camera.
 #[derive(Clone, Debug, Default)]
 pub struct ScreenScene {
@@ -106,6 +120,10 @@ pub struct ScreenScene {
     pub points: Vec<GridPoint>,
     /// `sides[k]`: where the side from `points[k]` to the next corner of its polygon comes from.
     pub sides: Vec<Side>,
+    /// For every face of the scene (`Scene::faces` order, culled ones included): how it lies on
+    /// screen. Feature lines read it: a silhouette edge is one whose two faces lie on the same
+    /// side of it on screen, whatever the stored winding.
+    pub orientation: Vec<Orientation>,
     /// Image width in pixels.
     pub width: u32,
     /// Image height in pixels.
@@ -229,6 +247,33 @@ fn clip_polygon(input: &[(DVec4, Side)], bit: u16, out: &mut Vec<(DVec4, Side)>)
     }
 }
 
+/// The snapped ends of the segment between two world points as the faces that share it see
+/// them: clipped by the same planes in the same order with the same arithmetic as
+/// `clip_polygon` (interpolating from the inside end), so a face edge clipped alone ends at the
+/// same grid points as the clipped sides of its faces. `None` when the segment lies outside the
+/// view frustum or is clipped away.
+pub fn snap_segment(m: &glam::DMat4, a: glam::DVec3, b: glam::DVec3) -> Option<[GridPoint; 2]> {
+    let (mut p, mut q) = (*m * a.extend(1.0), *m * b.extend(1.0));
+    let (cp, cq) = (outcode(p), outcode(q));
+    if cp & cq & FRUSTUM != 0 {
+        return None;
+    }
+    for bit in [NEAR, FAR, G_LEFT, G_RIGHT, G_BOTTOM, G_TOP] {
+        if (cp | cq) & bit == 0 {
+            continue;
+        }
+        let (dp, dq) = (plane_value(bit, p), plane_value(bit, q));
+        match (dp >= 0.0, dq >= 0.0) {
+            (true, true) => {}
+            (false, false) => return None,
+            (true, false) => q = p + (q - p) * (dp / (dp - dq)),
+            (false, true) => p = q + (p - q) * (dq / (dq - dp)),
+        }
+    }
+    let snap = |p: DVec4| GridPoint::snap(p.x / p.w, p.y / p.w, p.z / p.w);
+    Some([snap(p), snap(q)])
+}
+
 /// Projects, clips, snaps and culls every face of `scene`.
 pub fn project(
     scene: &Scene,
@@ -276,6 +321,7 @@ pub fn project(
     let mut sides: Vec<Side> = Vec::with_capacity(scene.corners.len());
     let mut buf_a: Vec<(DVec4, Side)> = Vec::new();
     let mut buf_b: Vec<(DVec4, Side)> = Vec::new();
+    let mut orientation = Vec::with_capacity(scene.faces.len());
 
     for (fi, face) in scene.faces.iter().enumerate() {
         let corners = scene.face_corners(face);
@@ -288,6 +334,7 @@ pub fn project(
         }
         if and & FRUSTUM != 0 {
             stats.frustum_culled += 1;
+            orientation.push(Orientation::Outside);
             continue;
         }
         let start = points.len();
@@ -351,12 +398,18 @@ pub fn project(
         } else {
             0
         };
+        orientation.push(match area.cmp(&0) {
+            std::cmp::Ordering::Greater => Orientation::Ccw,
+            std::cmp::Ordering::Less => Orientation::Cw,
+            std::cmp::Ordering::Equal => Orientation::Flat,
+        });
         let plane = if area != 0 {
             Plane::of_polygon(poly_pts)
         } else {
             None
         };
         let Some(plane) = plane else {
+            *orientation.last_mut().expect("pushed above") = Orientation::Flat;
             stats.degenerate_after_snap += 1;
             points.truncate(start);
             sides.truncate(start);
@@ -385,6 +438,7 @@ pub fn project(
         polys,
         points,
         sides,
+        orientation,
         width: camera.width,
         height: camera.height,
         stats,
