@@ -230,7 +230,7 @@ pub fn vertex_pixel(p: &Piece, k: usize, s: &Samples) -> [f64; 2] {
 }
 
 /// Where two lines cross, each coordinate correctly rounded; `None` for parallel lines.
-fn exact_crossing(l: &Line, m: &Line) -> Option<[f64; 2]> {
+pub(crate) fn exact_crossing(l: &Line, m: &Line) -> Option<[f64; 2]> {
     let ([a0, b0, d0], [a1, b1, d1]) = (l.exact(), m.exact());
     let den = a0 * b1 - a1 * b0;
     (!den.is_zero()).then(|| {

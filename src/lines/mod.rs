@@ -10,16 +10,25 @@
 //!
 //! The result is a [`LineDrawing`], written by `crate::output` as SVG, JSON, DXF or PDF.
 
+pub mod along;
+pub mod chain;
 pub mod drawing;
 pub mod features;
+pub mod tracks;
 
 pub use drawing::{LineDrawing, LineKind, Stroke, Visibility};
 
 use crate::camera::Camera;
-use crate::exact::Samples;
+use crate::exact::polygon::Piece;
+use crate::exact::predicates::Line;
+use crate::exact::{Plane, Samples};
 use crate::progress::Report;
-use crate::project::{CullMode, snap_segment};
+use crate::project::{CullMode, ScreenScene, Side, snap_segment};
 use crate::scene::Scene;
+use crate::visibility::{CoverageMap, Strategy};
+use along::At;
+use std::collections::HashMap;
+use tracks::{Track, TrackIndex, mark_seen};
 
 /// What a line drawing shows.
 #[derive(Clone, Debug, PartialEq)]
@@ -53,6 +62,8 @@ pub struct LineStats {
     pub vertices: usize,
     /// Feature edges of each kind, in [`LineKind::ALL`] order (intersections: segments).
     pub features: [usize; 5],
+    /// The least number of strokes that could draw the lines (per visibility and kind).
+    pub paths_minimum: usize,
 }
 
 /// A line drawing with its counters.
@@ -64,48 +75,85 @@ pub struct Lines {
     pub stats: LineStats,
 }
 
-/// The line drawing of `scene` seen by `camera`.
+/// The line drawing of `scene` seen by `camera`: the exact visible set (the coverage map,
+/// every face opaque), then [`lines_of`].
 pub fn line_drawing(
     scene: &Scene,
     camera: &Camera,
     options: &LineOptions,
-    _report: Option<Report>,
+    report: Option<Report>,
 ) -> crate::Result<Lines> {
     let prepared = crate::pipeline::prepare(scene, camera, options.cull);
-    let features = features::features(scene, &prepared.screen, options.crease_deg);
+    let visible = CoverageMap.visible_set(&prepared.screen, &|_| false, report);
+    Ok(lines_of(
+        scene,
+        camera,
+        &prepared.screen,
+        &visible.pieces,
+        options,
+    ))
+}
+
+/// The line drawing of `scene` seen by `camera`, read off `pieces`: the exact visible pieces
+/// of `screen` with every face opaque (any exact strategy's `VisibleSet::pieces`).
+pub fn lines_of(
+    scene: &Scene,
+    camera: &Camera,
+    screen: &ScreenScene,
+    pieces: &[Piece],
+    options: &LineOptions,
+) -> Lines {
+    let features = features::features(scene, screen, options.crease_deg);
     let samples = Samples::new(camera.width, camera.height);
     let m = camera.view_projection();
     let mut stats = LineStats {
         vertices: features.vertices,
         ..LineStats::default()
     };
-    let mut strokes = Vec::new();
-    for edge in &features.edges {
+    // One track per feature edge that shows on screen.
+    let mut tracks = Vec::new();
+    let mut track_of_edge = vec![u32::MAX; features.edges.len()];
+    for (e, edge) in features.edges.iter().enumerate() {
         stats.features[edge.kind as usize] += 1;
         let [a, b] = edge.ends.map(|i| scene.positions[i as usize]);
         let Some([p, q]) = snap_segment(&m, a, b) else {
             continue;
         };
-        if (p.x, p.y) == (q.x, q.y) {
+        let Some(plane) = Plane::edge(p, q) else {
             continue;
-        }
-        let px =
-            |g: crate::exact::GridPoint| [samples.col_of(g.x as f64), samples.row_of(g.y as f64)];
-        strokes.push(Stroke {
-            visibility: Visibility::Visible,
-            kind: edge.kind,
-            qi: 0,
-            points: vec![px(p), px(q)],
-            closed: false,
-        });
+        };
+        track_of_edge[e] = tracks.len() as u32;
+        let ends = (At::Grid([p.x, p.y]), At::Grid([q.x, q.y]));
+        tracks.push(Track::new(Line::Edge(plane), edge.kind, vec![ends], false));
     }
-    strokes.sort_by_key(|s| (s.visibility, s.kind));
-    Ok(Lines {
+    // Every screen side's track.
+    let mut of_side = vec![u32::MAX; screen.points.len()];
+    for poly in &screen.polys {
+        let face = &scene.faces[poly.face as usize];
+        for (j, side) in screen.sides(poly).iter().enumerate() {
+            if let Side::Edge(k) = side {
+                let e = features.edge_of_side[(face.start + k) as usize];
+                if e != u32::MAX {
+                    of_side[poly.start as usize + j] = track_of_edge[e as usize];
+                }
+            }
+        }
+    }
+    let of_cut = HashMap::new();
+    let index = TrackIndex {
+        of_side: &of_side,
+        of_cut: &of_cut,
+    };
+    mark_seen(screen, pieces, &index, &mut tracks);
+    let segments = tracks::segments(&tracks, &samples, options.hidden);
+    stats.paths_minimum = chain::minimum_strokes(&segments);
+    let strokes = chain::strokes(&segments);
+    Lines {
         drawing: LineDrawing {
             width: camera.width,
             height: camera.height,
             strokes,
         },
         stats,
-    })
+    }
 }

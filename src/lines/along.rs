@@ -1,0 +1,256 @@
+//! Exact points along a line of the screen, and their order.
+//!
+//! A drawn line lies on a [`Carrier`]: a kernel [`Line`] (a face edge through two grid points,
+//! or the projection of two planes' meeting line). A point on it is a grid point or where
+//! another kernel line crosses it ([`At`]); it is never rounded. Its position along the carrier
+//! is an exact rational ([`Param`]): its x (or y, for a steep carrier) coordinate, signed so
+//! that it grows along the carrier's direction. Comparing two positions cross-multiplies 512-bit
+//! integers (crossing coordinates are quotients below 2^231 / 2^206, so products stay below
+//! 2^440). The only rounding is [`Carrier::pixel`]: each coordinate correctly rounded once, a
+//! function of the exact point alone, so a point named by two different line pairs gets the
+//! same bits.
+
+use crate::draw::regions::exact_crossing;
+use crate::exact::Samples;
+use crate::exact::predicates::Line;
+use bnum::cast::As;
+use bnum::types::I512;
+use std::cmp::Ordering;
+
+fn wide(v: i32) -> I512 {
+    v.as_()
+}
+
+/// A point on a carrier.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum At {
+    /// A grid point on the carrier (x, y).
+    Grid([i32; 2]),
+    /// Where `Line` crosses the carrier (not parallel to it).
+    Cross(Line),
+}
+
+/// An exact position along a carrier: `num / den`, `den > 0`.
+#[derive(Clone, Copy, Debug)]
+pub struct Param {
+    num: I512,
+    den: I512,
+}
+
+impl PartialEq for Param {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for Param {}
+
+impl PartialOrd for Param {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Param {
+    fn cmp(&self, other: &Self) -> Ordering {
+        if self.den == other.den {
+            return self.num.cmp(&other.num);
+        }
+        (self.num * other.den).cmp(&(other.num * self.den))
+    }
+}
+
+/// A line that drawn segments lie on, with what it takes to order points along it.
+#[derive(Clone, Copy, Debug)]
+pub struct Carrier {
+    /// The kernel line.
+    pub line: Line,
+    coef: [I512; 3],
+    /// Positions are x coordinates (else y).
+    along_x: bool,
+    /// Positions are negated so that they grow along the direction (b, -a).
+    negate: bool,
+}
+
+impl Carrier {
+    /// The carrier of `line`, directed along (b, -a): for an edge line `Plane::edge(p, q)`, from
+    /// p to q.
+    pub fn new(line: Line) -> Carrier {
+        let coef = line.exact();
+        let [a, b, _] = coef;
+        let along_x = b.unsigned_abs() >= a.unsigned_abs();
+        // Moving along (b, -a), x grows when b > 0 and y grows when a < 0.
+        let negate = if along_x {
+            b.is_negative()
+        } else {
+            !a.is_negative()
+        };
+        Carrier {
+            line,
+            coef,
+            along_x,
+            negate,
+        }
+    }
+
+    /// The position of `at` along the carrier.
+    pub fn param(&self, at: &At) -> Param {
+        let (num, den) = match at {
+            At::Grid([x, y]) => (wide(if self.along_x { *x } else { *y }), wide(1)),
+            At::Cross(m) => {
+                let [a0, b0, d0] = self.coef;
+                let [a1, b1, d1] = m.exact();
+                let den = a0 * b1 - a1 * b0;
+                debug_assert!(!den.is_zero(), "a crossing line is not parallel");
+                let num = if self.along_x {
+                    b0 * d1 - b1 * d0
+                } else {
+                    a1 * d0 - a0 * d1
+                };
+                if den.is_negative() {
+                    (-num, -den)
+                } else {
+                    (num, den)
+                }
+            }
+        };
+        Param {
+            num: if self.negate { -num } else { num },
+            den,
+        }
+    }
+
+    /// `at` in pixels: its exact grid coordinates correctly rounded to f64, mapped to pixels as
+    /// the filled drawing maps its vertices.
+    pub fn pixel(&self, at: &At, s: &Samples) -> [f64; 2] {
+        let [x, y] = match at {
+            At::Grid([x, y]) => [*x as f64, *y as f64],
+            At::Cross(m) => exact_crossing(&self.line, m).expect("a crossing line is not parallel"),
+        };
+        [s.col_of(x), s.row_of(y)]
+    }
+
+    /// Whether `m` crosses the carrier (is not parallel to it).
+    pub fn crosses(&self, m: &Line) -> bool {
+        let [a0, b0, _] = self.coef;
+        let [a1, b1, _] = m.exact();
+        !(a0 * b1 - a1 * b0).is_zero()
+    }
+
+    /// How `m` runs along the carrier: `Greater` when its value grows in the carrier's direction
+    /// (its positive side lies ahead), `Less` when it falls, `Equal` when parallel.
+    pub fn heading(&self, m: &Line) -> Ordering {
+        let [a0, b0, _] = self.coef;
+        let [a1, b1, _] = m.exact();
+        // m's gradient (a1, b1) against the direction (b0, -a0).
+        (a1 * b0 - b1 * a0).cmp(&wide(0))
+    }
+
+    /// The sign of `m` on the carrier when they are parallel (the same everywhere on it).
+    pub fn side_of_parallel(&self, m: &Line) -> Ordering {
+        let [a0, b0, d0] = self.coef;
+        let [a1, b1, d1] = m.exact();
+        // m at a point of the carrier, (0, -d0/b0) or (-d0/a0, 0), times that divisor.
+        let (value, divisor) = if !b0.is_zero() {
+            (d1 * b0 - b1 * d0, b0)
+        } else {
+            (d1 * a0 - a1 * d0, a0)
+        };
+        let s = value.cmp(&wide(0));
+        if divisor.is_negative() {
+            s.reverse()
+        } else {
+            s
+        }
+    }
+}
+
+/// A piece of a carrier between two points, `from` before `to`.
+#[derive(Clone, Copy, Debug)]
+pub struct Span {
+    /// Its first end.
+    pub from: (Param, At),
+    /// Its last end.
+    pub to: (Param, At),
+}
+
+impl Span {
+    /// The span between two points of `carrier`, in its direction; `None` when they are the same
+    /// point.
+    pub fn between(carrier: &Carrier, a: At, b: At) -> Option<Span> {
+        let (pa, pb) = (carrier.param(&a), carrier.param(&b));
+        match pa.cmp(&pb) {
+            Ordering::Less => Some(Span {
+                from: (pa, a),
+                to: (pb, b),
+            }),
+            Ordering::Greater => Some(Span {
+                from: (pb, b),
+                to: (pa, a),
+            }),
+            Ordering::Equal => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exact::{GridPoint, Plane};
+
+    fn g(x: i32, y: i32) -> GridPoint {
+        GridPoint { x, y, z: 0 }
+    }
+
+    fn edge(p: (i32, i32), q: (i32, i32)) -> Line {
+        Line::Edge(Plane::edge(g(p.0, p.1), g(q.0, q.1)).unwrap())
+    }
+
+    #[test]
+    fn positions_grow_along_the_carrier_in_every_direction() {
+        for (p, q) in [
+            ((0, 0), (10, 3)),
+            ((10, 3), (0, 0)),
+            ((0, 0), (2, 9)),
+            ((2, 9), (0, 0)),
+            ((0, 5), (0, -5)),
+            ((-4, 1), (7, 1)),
+        ] {
+            let c = Carrier::new(edge(p, q));
+            let (a, b) = (
+                c.param(&At::Grid([p.0, p.1])),
+                c.param(&At::Grid([q.0, q.1])),
+            );
+            assert!(a < b, "{p:?} -> {q:?}");
+        }
+    }
+
+    #[test]
+    fn a_crossing_is_ordered_exactly_and_rounds_to_its_point() {
+        // The carrier y = x/3 from (0,0) to (30,10); the vertical x = 7 crosses it at (7, 7/3).
+        let c = Carrier::new(edge((0, 0), (30, 10)));
+        let cross = At::Cross(edge((7, -100), (7, 100)));
+        assert!(c.param(&At::Grid([6, 2])) < c.param(&cross));
+        assert!(c.param(&cross) < c.param(&At::Grid([9, 3])));
+        assert_eq!(c.param(&cross), c.param(&At::Cross(edge((7, 50), (7, 60)))));
+        let s = Samples::new(2, 2);
+        let px = c.pixel(&cross, &s);
+        assert_eq!(px, [s.col_of(7.0), s.row_of(7.0 / 3.0)]);
+    }
+
+    #[test]
+    fn headings_and_parallel_sides() {
+        let c = Carrier::new(edge((0, 0), (10, 0)));
+        // Positive on the left of (0,5)->(0,-5): x < 0 side... Plane::edge is positive on the
+        // left of p->q; going down, the left is +x, so its value grows along the carrier.
+        assert_eq!(c.heading(&edge((0, 5), (0, -5))), Ordering::Greater);
+        assert_eq!(c.heading(&edge((0, -5), (0, 5))), Ordering::Less);
+        assert_eq!(c.heading(&edge((0, 3), (4, 3))), Ordering::Equal);
+        // y = 3, directed +x: positive on its left (y > 3); the carrier y = 0 is on its negative side.
+        assert_eq!(c.side_of_parallel(&edge((0, 3), (4, 3))), Ordering::Less);
+        assert_eq!(c.side_of_parallel(&edge((4, 3), (0, 3))), Ordering::Greater);
+        assert_eq!(c.side_of_parallel(&edge((1, 0), (5, 0))), Ordering::Equal);
+        let v = Carrier::new(edge((2, 0), (2, 10)));
+        assert_eq!(v.side_of_parallel(&edge((5, 0), (5, 1))), Ordering::Greater);
+    }
+}
