@@ -274,6 +274,14 @@ pub fn snap_segment(m: &glam::DMat4, a: glam::DVec3, b: glam::DVec3) -> Option<[
     Some([snap(p), snap(q)])
 }
 
+/// The grid point of a world point as an unclipped face corner snaps to it; `None` when a
+/// face with that corner would be clipped there (outside the near or far plane or the guard
+/// band).
+pub fn snap_point(m: &glam::DMat4, a: glam::DVec3) -> Option<GridPoint> {
+    let p = *m * a.extend(1.0);
+    (outcode(p) & CLIP == 0).then(|| GridPoint::snap(p.x / p.w, p.y / p.w, p.z / p.w))
+}
+
 /// Projects, clips, snaps and culls every face of `scene`.
 pub fn project(
     scene: &Scene,

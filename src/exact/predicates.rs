@@ -152,7 +152,7 @@ impl Line {
     }
 
     /// Exact coefficients (a, b, d).
-    pub(crate) fn exact(&self) -> [I512; 3] {
+    pub fn exact(&self) -> [I512; 3] {
         match self {
             Line::Edge(p) => [wide(p.a as i128), wide(p.b as i128), wide(p.d)],
             Line::Cut(p, q) => {

@@ -312,6 +312,7 @@ impl UnionFind {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lines::along::At;
     use crate::lines::{LineKind, Visibility};
 
     fn seg(a: [f64; 2], b: [f64; 2]) -> Segment {
@@ -320,6 +321,8 @@ mod tests {
                 visibility: Visibility::Visible,
                 kind: LineKind::Silhouette,
             },
+            track: 0,
+            at: [At::Grid([0, 0]); 2],
             ends: [a, b],
         }
     }

@@ -57,6 +57,8 @@ pub struct Features {
     pub edge_of_side: Vec<u32>,
     /// Welded vertices.
     pub vertices: usize,
+    /// Each scene position's welded vertex id.
+    pub weld: Vec<u32>,
 }
 
 /// How many edges of each kind, and the welding, for reports.
@@ -141,6 +143,7 @@ pub fn features(scene: &Scene, screen: &ScreenScene, crease_deg: f64) -> Feature
         edges,
         edge_of_side,
         vertices: first.len(),
+        weld: weld_id,
     }
 }
 

@@ -14,6 +14,7 @@ pub mod along;
 pub mod chain;
 pub mod drawing;
 pub mod features;
+pub mod intersections;
 pub mod tracks;
 
 pub use drawing::{LineDrawing, LineKind, Stroke, Visibility};
@@ -21,14 +22,16 @@ pub use drawing::{LineDrawing, LineKind, Stroke, Visibility};
 use crate::camera::Camera;
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::Line;
-use crate::exact::{Plane, Samples};
+use crate::exact::{GridPoint, Plane, Samples};
+use crate::pipeline::Prepared;
 use crate::progress::Report;
-use crate::project::{CullMode, ScreenScene, Side, snap_segment};
+use crate::project::{CullMode, Orientation, ScreenScene, Side, project, snap_point, snap_segment};
 use crate::scene::Scene;
 use crate::visibility::{CoverageMap, Strategy};
 use along::At;
+use intersections::FlatFace;
 use std::collections::HashMap;
-use tracks::{Track, TrackIndex, mark_seen};
+use tracks::{SeenRule, Segment, Track, TrackIndex, mark_occluded, mark_seen};
 
 /// What a line drawing shows.
 #[derive(Clone, Debug, PartialEq)]
@@ -85,24 +88,50 @@ pub fn line_drawing(
 ) -> crate::Result<Lines> {
     let prepared = crate::pipeline::prepare(scene, camera, options.cull);
     let visible = CoverageMap.visible_set(&prepared.screen, &|_| false, report);
-    Ok(lines_of(
-        scene,
-        camera,
-        &prepared.screen,
-        &visible.pieces,
-        options,
-    ))
+    Ok(lines_of(scene, camera, &prepared, &visible.pieces, options))
 }
 
 /// The line drawing of `scene` seen by `camera`, read off `pieces`: the exact visible pieces
-/// of `screen` with every face opaque (any exact strategy's `VisibleSet::pieces`).
+/// of `prepared.screen` (projected with `options.cull`) with every face opaque (any exact
+/// strategy's `VisibleSet::pieces`).
 pub fn lines_of(
     scene: &Scene,
     camera: &Camera,
-    screen: &ScreenScene,
+    prepared: &Prepared,
     pieces: &[Piece],
     options: &LineOptions,
 ) -> Lines {
+    let (exact, mut stats) = exact_lines(scene, camera, prepared, pieces, options);
+    stats.paths_minimum = chain::minimum_strokes(&exact.segments);
+    let strokes = chain::strokes(&exact.segments);
+    Lines {
+        drawing: LineDrawing {
+            width: camera.width,
+            height: camera.height,
+            strokes,
+        },
+        stats,
+    }
+}
+
+/// The lines before chaining: every track and the segments drawn, with exact ends.
+#[derive(Clone, Debug, Default)]
+pub struct ExactLines {
+    /// Every line of the view: feature edges that show on screen, then intersections.
+    pub tracks: Vec<Track>,
+    /// The segments drawn, each with the track it draws.
+    pub segments: Vec<Segment>,
+}
+
+/// The tracks and segments of [`lines_of`], before chaining.
+pub fn exact_lines(
+    scene: &Scene,
+    camera: &Camera,
+    prepared: &Prepared,
+    pieces: &[Piece],
+    options: &LineOptions,
+) -> (ExactLines, LineStats) {
+    let screen = &prepared.screen;
     let features = features::features(scene, screen, options.crease_deg);
     let samples = Samples::new(camera.width, camera.height);
     let m = camera.view_projection();
@@ -110,6 +139,10 @@ pub fn lines_of(
         vertices: features.vertices,
         ..LineStats::default()
     };
+    let mut on_screen = vec![false; scene.faces.len()];
+    for poly in &screen.polys {
+        on_screen[poly.face as usize] = true;
+    }
     // One track per feature edge that shows on screen.
     let mut tracks = Vec::new();
     let mut track_of_edge = vec![u32::MAX; features.edges.len()];
@@ -124,7 +157,27 @@ pub fn lines_of(
         };
         track_of_edge[e] = tracks.len() as u32;
         let ends = (At::Grid([p.x, p.y]), At::Grid([q.x, q.y]));
-        tracks.push(Track::new(Line::Edge(plane), edge.kind, vec![ends], false));
+        let mut faces: Vec<u32> = edge.sides.iter().map(|s| s.face).collect();
+        faces.dedup();
+        let rule = if faces.iter().any(|&f| on_screen[f as usize]) {
+            SeenRule::BesideAFace
+        } else if faces
+            .iter()
+            .any(|&f| screen.orientation[f as usize] == Orientation::Flat)
+        {
+            SeenRule::Unoccluded
+        } else {
+            // Every face of it is a culled back face: it lies on the far side of a closed mesh.
+            SeenRule::Behind
+        };
+        tracks.push(Track::new(
+            Line::Edge(plane),
+            edge.kind,
+            faces,
+            intersections::plane_along(p, q),
+            vec![ends],
+            rule,
+        ));
     }
     // Every screen side's track.
     let mut of_side = vec![u32::MAX; screen.points.len()];
@@ -139,21 +192,67 @@ pub fn lines_of(
             }
         }
     }
-    let of_cut = HashMap::new();
+    // Intersections, back faces included: a hidden one is drawn too.
+    let all_faces;
+    let unculled = if options.cull == CullMode::Off {
+        screen
+    } else {
+        all_faces = project(scene, &prepared.analysis, camera, CullMode::Off);
+        &all_faces
+    };
+    let flats = flat_faces(scene, screen, &m);
+    let mut of_cut = HashMap::new();
+    for meeting in intersections::meetings(scene, unculled, &flats, &features.weld) {
+        stats.features[LineKind::Intersection as usize] += 1;
+        let t = tracks.len() as u32;
+        if !meeting.edge_on {
+            of_cut.insert((meeting.faces[0], meeting.faces[1]), t);
+        }
+        tracks.push(Track::new(
+            meeting.line,
+            LineKind::Intersection,
+            meeting.faces.to_vec(),
+            meeting.depth,
+            meeting.extent,
+            if meeting.edge_on {
+                SeenRule::Unoccluded
+            } else {
+                SeenRule::BesideBothFaces
+            },
+        ));
+    }
     let index = TrackIndex {
         of_side: &of_side,
         of_cut: &of_cut,
     };
     mark_seen(screen, pieces, &index, &mut tracks);
+    mark_occluded(pieces, &mut tracks);
     let segments = tracks::segments(&tracks, &samples, options.hidden);
-    stats.paths_minimum = chain::minimum_strokes(&segments);
-    let strokes = chain::strokes(&segments);
-    Lines {
-        drawing: LineDrawing {
-            width: camera.width,
-            height: camera.height,
-            strokes,
-        },
-        stats,
+    (ExactLines { tracks, segments }, stats)
+}
+
+/// The faces seen exactly edge-on whose corners are all unclipped, with their snapped corners
+/// (at least two distinct on screen).
+fn flat_faces(scene: &Scene, screen: &ScreenScene, m: &glam::DMat4) -> Vec<FlatFace> {
+    let mut out = Vec::new();
+    for (f, face) in scene.faces.iter().enumerate() {
+        if screen.orientation[f] != Orientation::Flat {
+            continue;
+        }
+        let corners: Option<Vec<GridPoint>> = scene
+            .face_positions(face)
+            .map(|p| snap_point(m, p))
+            .collect();
+        let Some(corners) = corners else { continue };
+        if corners
+            .iter()
+            .any(|c| (c.x, c.y) != (corners[0].x, corners[0].y))
+        {
+            out.push(FlatFace {
+                face: f as u32,
+                corners,
+            });
+        }
     }
+    out
 }

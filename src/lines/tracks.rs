@@ -8,6 +8,10 @@
 //!   own faces never hide it, and a face passing exactly through it is not in front);
 //! - an intersection of faces a and b is visible where a piece of a lies along it on one side
 //!   and a piece of b on the other;
+//! - a line none of whose faces is on screen, one of them seen edge-on (or where an edge-on face
+//!   meets another), is visible where no visible piece lies strictly in front of it: the pieces
+//!   whose interior it crosses are compared with its depth exactly;
+//! - an edge of culled back faces only lies on the far side of a closed mesh: hidden;
 //! - everywhere else on its extent a line is **hidden**.
 //!
 //! A piece side names its line by its [`Boundary`]; a side along a line of another polygon (an
@@ -23,9 +27,10 @@
 use super::along::{At, Carrier, Param};
 use super::drawing::{LineKind, Visibility};
 use crate::exact::polygon::{Boundary, Piece};
-use crate::exact::predicates::Line;
+use crate::exact::predicates::{Line, crossing_f64, depth_order_at};
 use crate::exact::{GRID_MAX, GridPoint, Plane, Samples};
 use crate::project::ScreenScene;
+use crate::visibility::grid::BoxGrid;
 use std::cmp::Ordering;
 use std::collections::HashMap;
 
@@ -36,24 +41,54 @@ pub struct Track {
     pub carrier: Carrier,
     /// What it is.
     pub kind: LineKind,
+    /// Provenance: the faces it belongs to (`Scene::faces` indices, ascending): an edge's
+    /// faces, or the two faces that meet.
+    pub faces: Vec<u32>,
+    /// A support plane (c > 0) holding the line in 3D: its depth at every point of the line.
+    pub depth: Plane,
     /// Where it exists on screen.
     pub extent: Vec<(At, At)>,
-    /// Where it is seen beside its faces: `seen[0]` for an edge (any of its faces); for an
-    /// intersection, `seen[0]` beside its first polygon and `seen[1]` beside its second.
+    /// Spans read off the visible pieces, as its [`SeenRule`] says.
     pub seen: [Vec<(At, At)>; 2],
-    /// An intersection: seen only where both of its polygons lie along it.
-    pub needs_both: bool,
+    /// How the spans decide where it is seen.
+    pub rule: SeenRule,
+}
+
+/// How a track's spans decide where it is seen (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SeenRule {
+    /// A face edge: seen where a piece of one of its faces lies along it (`seen[0]`).
+    BesideAFace,
+    /// An intersection: seen where pieces of both faces lie along it (`seen[0]` beside the
+    /// first face, `seen[1]` beside the second).
+    BesideBothFaces,
+    /// A line none of whose faces is on screen, one of them edge-on: seen except where a
+    /// piece lies in front of it (`seen[1]` holds those spans).
+    Unoccluded,
+    /// An edge of culled back faces only: on the far side of a closed mesh (culling removes
+    /// only back faces of closed, consistently oriented meshes the near plane does not cut),
+    /// where the mesh's own front faces lie in front of it. Never seen.
+    Behind,
 }
 
 impl Track {
     /// A track with nothing seen yet.
-    pub fn new(line: Line, kind: LineKind, extent: Vec<(At, At)>, needs_both: bool) -> Track {
+    pub fn new(
+        line: Line,
+        kind: LineKind,
+        faces: Vec<u32>,
+        depth: Plane,
+        extent: Vec<(At, At)>,
+        rule: SeenRule,
+    ) -> Track {
         Track {
             carrier: Carrier::new(line),
             kind,
+            faces,
+            depth,
             extent,
             seen: [Vec::new(), Vec::new()],
-            needs_both,
+            rule,
         }
     }
 }
@@ -63,7 +98,7 @@ pub struct TrackIndex<'a> {
     /// Per screen side (`ScreenScene::points` index): the track of the face edge it lies on, or
     /// `u32::MAX`.
     pub of_side: &'a [u32],
-    /// The track of the intersection of polygons (a, b), a < b.
+    /// The track of the intersection of faces (a, b) (`Scene::faces` indices), a < b.
     pub of_cut: &'a HashMap<(u32, u32), u32>,
 }
 
@@ -108,8 +143,9 @@ pub fn mark_seen(screen: &ScreenScene, pieces: &[Piece], index: &TrackIndex, tra
                     }
                 }
                 Boundary::Cut { a, b } if a == piece.poly || b == piece.poly => {
-                    if let Some(&t) = index.of_cut.get(&(a.min(b), a.max(b))) {
-                        let which = (piece.poly == a.max(b)) as usize;
+                    let [fa, fb] = [a, b].map(|p| screen.polys[p as usize].face);
+                    if let Some(&t) = index.of_cut.get(&(fa.min(fb), fa.max(fb))) {
+                        let which = (poly.face == fa.max(fb)) as usize;
                         tracks[t as usize].seen[which].push(span);
                     }
                 }
@@ -150,12 +186,16 @@ pub struct Label {
     pub kind: LineKind,
 }
 
-/// A drawn segment, in pixels.
+/// A drawn segment.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Segment {
     /// What it is.
     pub label: Label,
-    /// Its ends.
+    /// The track drawn here (of the tracks on this screen line, the one the label comes from).
+    pub track: u32,
+    /// Its ends, exactly, on that track's carrier, in the carrier's direction.
+    pub at: [At; 2],
+    /// Its ends in pixels.
     pub ends: [[f64; 2]; 2],
 }
 
@@ -176,6 +216,11 @@ fn view_lines() -> [Line; 4] {
 /// points; `None` when it is empty or a point. A carrier lying along one of the lines counts as
 /// inside it.
 pub fn clip_to_convex(carrier: &Carrier, lines: &[Line]) -> Option<(At, At)> {
+    clip_to_region(carrier, lines, true)
+}
+
+/// [`clip_to_convex`], a carrier along one of the lines counting as inside when `closed`.
+fn clip_to_region(carrier: &Carrier, lines: &[Line], closed: bool) -> Option<(At, At)> {
     let mut lo: Option<(Param, Line)> = None;
     let mut hi: Option<(Param, Line)> = None;
     for m in lines {
@@ -192,11 +237,11 @@ pub fn clip_to_convex(carrier: &Carrier, lines: &[Line]) -> Option<(At, At)> {
                     hi = Some((p, *m));
                 }
             }
-            Ordering::Equal => {
-                if carrier.side_of_parallel(m) == Ordering::Less {
-                    return None;
-                }
-            }
+            Ordering::Equal => match carrier.side_of_parallel(m) {
+                Ordering::Less => return None,
+                Ordering::Equal if !closed => return None,
+                _ => {}
+            },
         }
     }
     let ((pl, l), (ph, h)) = (lo?, hi?);
@@ -309,13 +354,13 @@ fn resolve(
             }
         }
     }
-    events.sort_by(|x, y| x.0.cmp(&y.0));
+    events.sort_by_key(|e| e.0);
     let slot = |t: usize| group.iter().position(|&u| u == t).expect("in the group");
     let mut window_open = 0;
     let mut extent = vec![0i32; group.len()];
     let mut seen = vec![[0i32; 2]; group.len()];
     // The segment being built: its label and first point.
-    let mut open: Option<(Label, At)> = None;
+    let mut open: Option<((Label, usize), At)> = None;
     let mut i = 0;
     while i < events.len() {
         let here = events[i].0;
@@ -328,7 +373,7 @@ fn resolve(
             }
             i += 1;
         }
-        // The label from here to the next point.
+        // The label from here to the next point, and the track it comes from.
         let label = if window_open > 0 {
             group
                 .iter()
@@ -337,28 +382,30 @@ fn resolve(
                 .map(|(s, &t)| {
                     let track = &tracks[t];
                     let [s0, s1] = seen[s];
-                    let is_seen = if track.needs_both {
-                        s0 > 0 && s1 > 0
-                    } else {
-                        s0 > 0 || s1 > 0
+                    let is_seen = match track.rule {
+                        SeenRule::BesideAFace => s0 > 0 || s1 > 0,
+                        SeenRule::BesideBothFaces => s0 > 0 && s1 > 0,
+                        SeenRule::Unoccluded => s1 == 0,
+                        SeenRule::Behind => false,
                     };
-                    Label {
+                    let label = Label {
                         visibility: if is_seen {
                             Visibility::Visible
                         } else {
                             Visibility::Hidden
                         },
                         kind: track.kind,
-                    }
+                    };
+                    (label, t)
                 })
-                .filter(|l| hidden || l.visibility == Visibility::Visible)
+                .filter(|(l, _)| hidden || l.visibility == Visibility::Visible)
                 .min()
         } else {
             None
         };
         if open.map(|(l, _)| l) != label {
-            if let Some((l, from)) = open.take() {
-                push(carrier, l, from, at, samples, out);
+            if let Some(((l, t), from)) = open.take() {
+                push(&tracks[t].carrier, l, t, [from, at], samples, out);
             }
             open = label.map(|l| (l, at));
         }
@@ -369,14 +416,115 @@ fn resolve(
 fn push(
     carrier: &Carrier,
     label: Label,
-    from: At,
-    to: At,
+    track: usize,
+    at: [At; 2],
     samples: &Samples,
     out: &mut Vec<Segment>,
 ) {
-    let ends = [carrier.pixel(&from, samples), carrier.pixel(&to, samples)];
+    let ends = at.map(|a| carrier.pixel(&a, samples));
     // Two exact points a rounding apart draw as one point.
     if ends[0] != ends[1] {
-        out.push(Segment { label, ends });
+        // In the track's own direction.
+        let (p0, p1) = (carrier.param(&at[0]), carrier.param(&at[1]));
+        let (at, ends) = if p0 < p1 {
+            (at, ends)
+        } else {
+            ([at[1], at[0]], [ends[1], ends[0]])
+        };
+        out.push(Segment {
+            label,
+            track: track as u32,
+            at,
+            ends,
+        });
     }
+}
+
+/// For the [`SeenRule::Unoccluded`] tracks among `tracks`: the spans where a visible piece lies
+/// strictly in front of them (in `seen[1]`). A piece occludes the part of the carrier that
+/// crosses its interior where its plane is nearer than the track's depth plane, decided exactly
+/// at the span's ends and split where the two planes meet.
+pub fn mark_occluded(pieces: &[Piece], tracks: &mut [Track]) {
+    let which: Vec<usize> = (0..tracks.len())
+        .filter(|&t| tracks[t].rule == SeenRule::Unoccluded)
+        .collect();
+    if which.is_empty() {
+        return;
+    }
+    let boxes: Vec<[f64; 4]> = pieces
+        .iter()
+        .map(crate::visibility::coverage::bounds)
+        .collect();
+    let mut grid = BoxGrid::over(&boxes, boxes.len());
+    for (i, b) in boxes.iter().enumerate() {
+        grid.insert(i as u32, b);
+    }
+    let mut near: Vec<u32> = Vec::new();
+    for t in which {
+        let track = &tracks[t];
+        near.clear();
+        grid.visit(&track_box(track), |_| true, |i| near.push(i));
+        near.sort_unstable();
+        near.dedup();
+        let mut occluded = Vec::new();
+        for &i in &near {
+            let piece = &pieces[i as usize];
+            let Some(inside) = clip_to_region(&track.carrier, &piece.lines, false) else {
+                continue;
+            };
+            occluded.extend(in_front(track, inside, &piece.support));
+        }
+        tracks[t].seen[1] = occluded;
+    }
+}
+
+/// The part of span `(lo, hi)` of the track where plane `s` is strictly nearer than the track.
+fn in_front(track: &Track, (lo, hi): (At, At), s: &Plane) -> Option<(At, At)> {
+    let d = &track.depth;
+    if crate::exact::polygon::same_plane(s, d) {
+        return None;
+    }
+    let order = |at: &At| depth_order_on(&track.carrier, at, s, d);
+    match (order(&lo), order(&hi)) {
+        (Ordering::Less, Ordering::Less | Ordering::Equal) | (Ordering::Equal, Ordering::Less) => {
+            Some((lo, hi))
+        }
+        (Ordering::Less, Ordering::Greater) => Some((lo, At::Cross(Line::Cut(*d, *s)))),
+        (Ordering::Greater, Ordering::Less) => Some((At::Cross(Line::Cut(*d, *s)), hi)),
+        _ => None,
+    }
+}
+
+/// The depth order of planes `s` and `t` at point `at` of the carrier (`Less`: `s` nearer).
+fn depth_order_on(carrier: &Carrier, at: &At, s: &Plane, t: &Plane) -> Ordering {
+    let other = match at {
+        At::Cross(m) => *m,
+        At::Grid([x, y]) => {
+            // A grid line through the point, across the carrier.
+            let p = GridPoint { x: *x, y: *y, z: 0 };
+            let vertical =
+                Line::Edge(Plane::edge(p, GridPoint { y: y + 1, ..p }).expect("distinct"));
+            if carrier.crosses(&vertical) {
+                vertical
+            } else {
+                Line::Edge(Plane::edge(p, GridPoint { x: x + 1, ..p }).expect("distinct"))
+            }
+        }
+    };
+    depth_order_at([&carrier.line, &other], s, t).expect("the lines cross")
+}
+
+/// A box around the track's extent in grid units, widened (a filter).
+fn track_box(track: &Track) -> [f64; 4] {
+    let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+    for &(p, q) in &track.extent {
+        for at in [p, q] {
+            let [x, y] = match at {
+                At::Grid([x, y]) => [x as f64, y as f64],
+                At::Cross(m) => crossing_f64(&track.carrier.line, &m),
+            };
+            b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+        }
+    }
+    [b[0] - 2.0, b[1] - 2.0, b[2] + 2.0, b[3] + 2.0]
 }
