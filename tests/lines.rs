@@ -438,3 +438,27 @@ fn a_face_seen_edge_on_still_meets_the_face_it_passes_through() {
     );
     check_visibility(&scene, &camera);
 }
+
+#[test]
+fn faces_sharing_a_corner_meet_only_where_they_cross_beyond_it() {
+    let p = DVec3::new;
+    let v = p(0.0, 0.0, 0.0);
+    let meetings = |other_side: f64| {
+        let mut b = SceneBuilder::new("corner");
+        support::scenes::add_triangle(&mut b, [v, p(2.0, 1.0, 0.0), p(2.0, -1.0, 0.0)]);
+        let x = 2.0 * other_side;
+        support::scenes::add_triangle(&mut b, [v, p(x, 0.0, 1.0), p(x, 0.0, -1.0)]);
+        let scene = b.finish().unwrap();
+        let camera = fit(&scene, NamedView::Iso, false, 300, 200);
+        let (_, lines) = exact(&scene, &camera, &LineOptions::default());
+        lines
+            .tracks
+            .iter()
+            .filter(|t| t.kind == LineKind::Intersection)
+            .count()
+    };
+    // Both run from V along +x: they pass through each other along the x axis.
+    assert_eq!(meetings(1.0), 1);
+    // One runs along +x, the other along -x: their planes meet on the x axis, they only touch.
+    assert_eq!(meetings(-1.0), 0);
+}

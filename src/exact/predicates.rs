@@ -460,6 +460,21 @@ pub fn crossing_with_error(l: &Line, m: &Line) -> Option<([f64; 2], f64)> {
     (x.is_finite() && y.is_finite() && e.is_finite()).then_some(([x, y], e))
 }
 
+/// The sign of `a_m·b_l - b_m·a_l` for lines `l`, `m`: how `m` runs along `l` (`Greater` when
+/// `m`'s value grows in `l`'s direction `(b_l, -a_l)`, `Equal` when they are parallel). Exact,
+/// through the f64 filter.
+pub fn heading(l: &Line, m: &Line) -> Ordering {
+    let ([a0, b0, _], [a1, b1, _]) = (l.filtered(), m.filtered());
+    let det = a1.value * b0.value - b1.value * a0.value;
+    let perm = a1.magnitude * b0.magnitude + b1.magnitude * a0.magnitude;
+    if let Some(s) = filtered_sign(det, perm) {
+        return s;
+    }
+    count_fallback();
+    let ([a0, b0, _], [a1, b1, _]) = (l.exact(), m.exact());
+    (a1 * b0 - b1 * a0).cmp(&zero())
+}
+
 /// Exact orientation of three grid points' (x, y): `Greater` for counter-clockwise (y up).
 pub fn orient2d(p: GridPoint, q: GridPoint, r: GridPoint) -> Ordering {
     let det = (q.x as i64 - p.x as i64) * (r.y as i64 - p.y as i64)

@@ -4,15 +4,17 @@
 //! or the projection of two planes' meeting line). A point on it is a grid point or where
 //! another kernel line crosses it ([`At`]); it is never rounded. Its position along the carrier
 //! is an exact rational ([`Param`]): its x (or y, for a steep carrier) coordinate, signed so
-//! that it grows along the carrier's direction. Comparing two positions cross-multiplies 512-bit
-//! integers (crossing coordinates are quotients below 2^231 / 2^206, so products stay below
-//! 2^440). The only rounding is [`Carrier::pixel`]: each coordinate correctly rounded once, a
+//! that it grows along the carrier's direction. Two positions are compared in f64 when their
+//! proven error bounds ([`crossing_with_error`]) separate them, and otherwise exactly, by
+//! cross-multiplying 512-bit integers (crossing coordinates are quotients below 2^231 / 2^206,
+//! so products stay below 2^440). The only rounding is [`Carrier::pixel`]: each coordinate correctly rounded once, a
 //! function of the exact point alone, so a point named by two different line pairs gets the
 //! same bits.
 
 use crate::draw::regions::exact_crossing;
 use crate::exact::Samples;
-use crate::exact::predicates::Line;
+use crate::exact::U;
+use crate::exact::predicates::{Line, crossing_with_error, heading};
 use bnum::cast::As;
 use bnum::types::I512;
 use std::cmp::Ordering;
@@ -30,11 +32,44 @@ pub enum At {
     Cross(Line),
 }
 
-/// An exact position along a carrier: `num / den`, `den > 0`.
+/// An exact position along a carrier: an f64 value with a proven error bound, and what it
+/// takes to compute it exactly when two positions are too close for the bounds to decide.
 #[derive(Clone, Copy, Debug)]
 pub struct Param {
-    num: I512,
-    den: I512,
+    /// The position, within `err` of the exact one.
+    approx: f64,
+    err: f64,
+    /// The point and its carrier, for the exact comparison.
+    at: At,
+    carrier: Line,
+    along_x: bool,
+    negate: bool,
+}
+
+impl Param {
+    /// `num / den` (`den > 0`), exactly.
+    fn exact(&self) -> (I512, I512) {
+        let (num, den) = match &self.at {
+            At::Grid([x, y]) => (wide(if self.along_x { *x } else { *y }), wide(1)),
+            At::Cross(m) => {
+                let [a0, b0, d0] = self.carrier.exact();
+                let [a1, b1, d1] = m.exact();
+                let den = a0 * b1 - a1 * b0;
+                debug_assert!(!den.is_zero(), "a crossing line is not parallel");
+                let num = if self.along_x {
+                    b0 * d1 - b1 * d0
+                } else {
+                    a1 * d0 - a0 * d1
+                };
+                if den.is_negative() {
+                    (-num, -den)
+                } else {
+                    (num, den)
+                }
+            }
+        };
+        (if self.negate { -num } else { num }, den)
+    }
 }
 
 impl PartialEq for Param {
@@ -53,10 +88,32 @@ impl PartialOrd for Param {
 
 impl Ord for Param {
     fn cmp(&self, other: &Self) -> Ordering {
-        if self.den == other.den {
-            return self.num.cmp(&other.num);
+        // The difference of the two f64 values errs by their bounds and one rounding.
+        let diff = self.approx - other.approx;
+        let bound = (self.err + other.err) * (1.0 + 4.0 * U)
+            + 4.0 * U * self.approx.abs().max(other.approx.abs());
+        if diff > bound {
+            return Ordering::Greater;
         }
-        (self.num * other.den).cmp(&(other.num * self.den))
+        if diff < -bound {
+            return Ordering::Less;
+        }
+        match (&self.at, &other.at) {
+            // Both exact in f64 (grid coordinates are small integers).
+            (At::Grid(_), At::Grid(_)) => return self.approx.total_cmp(&other.approx),
+            // A line through the grid point crosses the carrier there.
+            (At::Grid([x, y]), At::Cross(m)) | (At::Cross(m), At::Grid([x, y]))
+                if m.sign_at_grid(*x, *y) == Some(Ordering::Equal) =>
+            {
+                return Ordering::Equal;
+            }
+            _ => {}
+        }
+        let ((n0, d0), (n1, d1)) = (self.exact(), other.exact());
+        if d0 == d1 {
+            return n0.cmp(&n1);
+        }
+        (n0 * d1).cmp(&(n1 * d0))
     }
 }
 
@@ -95,28 +152,20 @@ impl Carrier {
 
     /// The position of `at` along the carrier.
     pub fn param(&self, at: &At) -> Param {
-        let (num, den) = match at {
-            At::Grid([x, y]) => (wide(if self.along_x { *x } else { *y }), wide(1)),
-            At::Cross(m) => {
-                let [a0, b0, d0] = self.coef;
-                let [a1, b1, d1] = m.exact();
-                let den = a0 * b1 - a1 * b0;
-                debug_assert!(!den.is_zero(), "a crossing line is not parallel");
-                let num = if self.along_x {
-                    b0 * d1 - b1 * d0
-                } else {
-                    a1 * d0 - a0 * d1
-                };
-                if den.is_negative() {
-                    (-num, -den)
-                } else {
-                    (num, den)
-                }
-            }
+        let (value, err) = match at {
+            At::Grid([x, y]) => (if self.along_x { *x } else { *y } as f64, 0.0),
+            At::Cross(m) => match crossing_with_error(&self.line, m) {
+                Some(([x, y], e)) => (if self.along_x { x } else { y }, e),
+                None => (0.0, f64::INFINITY),
+            },
         };
         Param {
-            num: if self.negate { -num } else { num },
-            den,
+            approx: if self.negate { -value } else { value },
+            err,
+            at: *at,
+            carrier: self.line,
+            along_x: self.along_x,
+            negate: self.negate,
         }
     }
 
@@ -132,18 +181,13 @@ impl Carrier {
 
     /// Whether `m` crosses the carrier (is not parallel to it).
     pub fn crosses(&self, m: &Line) -> bool {
-        let [a0, b0, _] = self.coef;
-        let [a1, b1, _] = m.exact();
-        !(a0 * b1 - a1 * b0).is_zero()
+        self.heading(m) != Ordering::Equal
     }
 
     /// How `m` runs along the carrier: `Greater` when its value grows in the carrier's direction
     /// (its positive side lies ahead), `Less` when it falls, `Equal` when parallel.
     pub fn heading(&self, m: &Line) -> Ordering {
-        let [a0, b0, _] = self.coef;
-        let [a1, b1, _] = m.exact();
-        // m's gradient (a1, b1) against the direction (b0, -a0).
-        (a1 * b0 - b1 * a0).cmp(&wide(0))
+        heading(&self.line, m)
     }
 
     /// The sign of `m` on the carrier when they are parallel (the same everywhere on it).

@@ -27,7 +27,6 @@ use crate::exact::predicates::Line;
 use crate::exact::{GridPoint, Plane};
 use crate::project::{ScreenPoly, ScreenScene};
 use crate::scene::Scene;
-use crate::visibility::grid::for_each_near;
 use std::cmp::Ordering;
 
 /// Two faces passing through each other.
@@ -74,7 +73,8 @@ pub fn meetings(
             z.fold(f64::MIN, f64::max) + 1.0,
         ]
     }));
-    let parts: Vec<Vec<Vec<Line>>> = polys.iter().map(|p| convex_parts(screen, p)).collect();
+    // Convex parts, made when a pair first needs them.
+    let mut parts: Vec<Option<Vec<Vec<Line>>>> = vec![None; polys.len()];
     let welded = |face: u32| -> Vec<u32> {
         let face = &scene.faces[face as usize];
         let mut v: Vec<u32> = scene
@@ -95,67 +95,166 @@ pub fn meetings(
         .collect();
     let n = polys.len();
     let mut out = Vec::new();
-    for_each_near(
-        &boxes,
-        |_| true,
-        |a, near| {
-            if a >= n {
-                let flat = &flats[a - n];
-                let va = welded(flat.face);
-                for &b in near.iter().filter(|&&b| b < n) {
-                    let overlap_in_depth =
-                        depths[a][0] <= depths[b][1] && depths[b][0] <= depths[a][1];
-                    if overlap_in_depth && !share_an_edge(&va, &welded(polys[b].face)) {
-                        out.extend(edge_on_meeting(flat, &polys[b], &parts[b]));
-                    }
-                }
-                return;
+    let boxes: Vec<[f64; 6]> = boxes
+        .iter()
+        .zip(&depths)
+        .map(|(b, d)| [b[0], b[1], d[0], b[2], b[3], d[1]])
+        .collect();
+    let mut on_pair = |a: usize, b: usize| {
+        if a >= n && b >= n {
+            return;
+        }
+        if b >= n {
+            // An edge-on face and a polygon.
+            let flat = &flats[b - n];
+            if !share_an_edge(&welded(flat.face), &welded(polys[a].face)) {
+                let parts_a = parts[a].get_or_insert_with(|| convex_parts(screen, &polys[a]));
+                out.extend(edge_on_meeting(flat, &polys[a], parts_a));
             }
-            let pa = &polys[a];
-            let mut va: Option<Vec<u32>> = None;
-            for &b in near.iter().filter(|&&b| b > a && b < n) {
-                let pb = &polys[b];
-                if depths[a][1] < depths[b][0] || depths[b][1] < depths[a][0] {
-                    continue;
-                }
-                let line = Line::Cut(pa.plane, pb.plane);
-                if !crosses(screen, pa, &line) || !crosses(screen, pb, &line) {
-                    continue;
-                }
-                let va = va.get_or_insert_with(|| welded(pa.face));
-                match shared(va, &welded(pb.face)) {
-                    0 => {}
-                    1 if planar[a] && planar[b] => {}
-                    _ => continue,
-                }
-                let carrier = Carrier::new(line);
-                let mut extent = Vec::new();
-                for part_a in &parts[a] {
-                    let Some(ia) = clip_to_convex(&carrier, part_a) else {
-                        continue;
-                    };
-                    for part_b in &parts[b] {
-                        if let Some(ib) = clip_to_convex(&carrier, part_b)
-                            && let Some(both) = overlap(&carrier, ia, ib)
-                        {
-                            extent.push(both);
-                        }
-                    }
-                }
-                if !extent.is_empty() {
-                    let (fa, fb) = (pa.face.min(pb.face), pa.face.max(pb.face));
-                    out.push(Meeting {
-                        faces: [fa, fb],
-                        line,
-                        depth: pa.plane,
-                        extent,
-                        edge_on: false,
-                    });
+            return;
+        }
+        let (pa, pb) = (&polys[a], &polys[b]);
+        let line = Line::Cut(pa.plane, pb.plane);
+        // For a face lying in its plane, the meeting line's side at a corner is the side of
+        // the other plane the corner lies on (cheaper to evaluate).
+        let straddles = |p: &ScreenPoly, planar: bool, other: &Plane| {
+            if planar {
+                straddles_plane(screen, p, other)
+            } else {
+                crosses(screen, p, &line)
+            }
+        };
+        if !straddles(pb, planar[b], &pa.plane) || !straddles(pa, planar[a], &pb.plane) {
+            return;
+        }
+        match shared(&welded(pa.face), &welded(pb.face)) {
+            0 => {}
+            1 if planar[a] && planar[b] => {
+                if apart_beyond_corner(screen, pa, pb, &line) == Some(true) {
+                    return;
                 }
             }
-        },
-    );
+            _ => return,
+        }
+        let carrier = Carrier::new(line);
+        let mut extent = Vec::new();
+        parts[a].get_or_insert_with(|| convex_parts(screen, pa));
+        parts[b].get_or_insert_with(|| convex_parts(screen, pb));
+        let (parts_a, parts_b) = (parts[a].as_ref().unwrap(), parts[b].as_ref().unwrap());
+        for part_a in parts_a {
+            let Some(ia) = clip_to_convex(&carrier, part_a) else {
+                continue;
+            };
+            for part_b in parts_b {
+                if let Some(ib) = clip_to_convex(&carrier, part_b)
+                    && let Some(both) = overlap(&carrier, ia, ib)
+                {
+                    extent.push(both);
+                }
+            }
+        }
+        if !extent.is_empty() {
+            let (fa, fb) = (pa.face.min(pb.face), pa.face.max(pb.face));
+            out.push(Meeting {
+                faces: [fa, fb],
+                line,
+                depth: pa.plane,
+                extent,
+                edge_on: false,
+            });
+        }
+    };
+    for (a, b) in overlapping_pairs(&boxes) {
+        on_pair(a, b);
+    }
     out
+}
+
+/// Every two boxes (a < b) of `boxes` (x0, y0, z0, x1, y1, z1) whose closed extents meet (a
+/// filter: the caller decides exactly). A 3D grid of about `boxes.len()` cells whose slabs
+/// along each axis hold about equal numbers of box centres (so that perspective depth, crowded
+/// near the far plane, is cut as finely as anything else); a pair is reported in the one cell
+/// holding the corner where both boxes start. Order: by cell, then by box.
+fn overlapping_pairs(boxes: &[[f64; 6]]) -> Vec<(usize, usize)> {
+    if boxes.len() < 2 {
+        return Vec::new();
+    }
+    let per_axis = ((boxes.len() as f64).cbrt().ceil() as usize).clamp(1, 96);
+    // Slab boundaries per axis: quantiles of the box centres.
+    let bounds: Vec<Vec<f64>> = (0..3)
+        .map(|k| {
+            let mut c: Vec<f64> = boxes.iter().map(|b| 0.5 * (b[k] + b[k + 3])).collect();
+            c.sort_unstable_by(f64::total_cmp);
+            (1..per_axis).map(|s| c[s * c.len() / per_axis]).collect()
+        })
+        .collect();
+    // The slab of a value: how many boundaries lie at or below it.
+    let slab = |v: f64, k: usize| bounds[k].partition_point(|&b| b <= v);
+    let ranges: Vec<[usize; 6]> = boxes
+        .iter()
+        .map(|b| std::array::from_fn(|i| slab(b[i], i % 3)))
+        .collect();
+    let index = |x: usize, y: usize, z: usize| (z * per_axis + y) * per_axis + x;
+    let mut cells: Vec<Vec<u32>> = vec![Vec::new(); per_axis * per_axis * per_axis];
+    for (i, r) in ranges.iter().enumerate() {
+        for z in r[2]..=r[5] {
+            for y in r[1]..=r[4] {
+                for x in r[0]..=r[3] {
+                    cells[index(x, y, z)].push(i as u32);
+                }
+            }
+        }
+    }
+    let mut pairs = Vec::new();
+    for (c, cell) in cells.iter().enumerate() {
+        for (k, &a) in cell.iter().enumerate() {
+            let (ba, ra) = (&boxes[a as usize], &ranges[a as usize]);
+            for &b in &cell[k + 1..] {
+                let (bb, rb) = (&boxes[b as usize], &ranges[b as usize]);
+                if (0..3).any(|i| ba[i] > bb[i + 3] || bb[i] > ba[i + 3]) {
+                    continue;
+                }
+                if index(ra[0].max(rb[0]), ra[1].max(rb[1]), ra[2].max(rb[2])) == c {
+                    pairs.push((a as usize, b as usize));
+                }
+            }
+        }
+    }
+    pairs
+}
+
+/// For two triangles with a common corner V that the meeting line of their planes passes
+/// through: do they go apart from V (each meets the line on a different side of V, so they do
+/// not cross beyond it)? Exact, on grid integers; `None` when they are not two triangles with
+/// a common corner. Seen from V, the line runs into a triangle (V, p, q) on the side where the
+/// segment p-q crosses it: with p on the line's positive side, that is along the line's
+/// direction exactly when the triangle turns clockwise.
+fn apart_beyond_corner(
+    screen: &ScreenScene,
+    pa: &ScreenPoly,
+    pb: &ScreenPoly,
+    line: &Line,
+) -> Option<bool> {
+    let (ca, cb) = (screen.corners(pa), screen.corners(pb));
+    if ca.len() != 3 || cb.len() != 3 {
+        return None;
+    }
+    let (i, j) = (0..3)
+        .flat_map(|i| (0..3).map(move |j| (i, j)))
+        .find(|&(i, j)| ca[i] == cb[j])?;
+    let direction = |c: &[GridPoint], k: usize| -> Option<i32> {
+        let (v, p, q) = (c[k], c[(k + 1) % 3], c[(k + 2) % 3]);
+        let turn = crate::exact::predicates::orient2d(v, p, q);
+        match (side_at(line, p), turn) {
+            (Ordering::Equal, _) | (_, Ordering::Equal) => None,
+            (sp, turn) => Some(if (sp == Ordering::Greater) == (turn == Ordering::Less) {
+                1
+            } else {
+                -1
+            }),
+        }
+    };
+    Some(direction(ca, i)? != direction(cb, j)?)
 }
 
 /// Where the edge-on face `flat` meets polygon `b` (convex parts `parts`), if they cross.
@@ -260,6 +359,17 @@ fn crosses(screen: &ScreenScene, p: &ScreenPoly, line: &Line) -> bool {
         }
     }
     false
+}
+
+/// Do the polygon's corners lie strictly on both sides of `plane`? Exact.
+fn straddles_plane(screen: &ScreenScene, p: &ScreenPoly, plane: &Plane) -> bool {
+    let (mut pos, mut neg) = (false, false);
+    for c in screen.corners(p) {
+        let v = plane.value_at(*c);
+        pos |= v > 0;
+        neg |= v < 0;
+    }
+    pos && neg
 }
 
 /// The sign of `line` at a grid point, exactly.

@@ -157,9 +157,14 @@ pub fn mark_seen(screen: &ScreenScene, pieces: &[Piece], index: &TrackIndex, tra
                             continue;
                         }
                         let edge = tracks[t as usize].carrier.line;
-                        if piece.vertex_line_sign(k, &edge) == Ordering::Equal
-                            && piece.vertex_line_sign((k + 1) % n, &edge) == Ordering::Equal
-                        {
+                        let along = match (&piece.lines[k], &edge) {
+                            (Line::Edge(p), Line::Edge(q)) => same_edge_line(p, q),
+                            _ => {
+                                piece.vertex_line_sign(k, &edge) == Ordering::Equal
+                                    && piece.vertex_line_sign((k + 1) % n, &edge) == Ordering::Equal
+                            }
+                        };
+                        if along {
                             tracks[t as usize].seen[0].push(span);
                         }
                     }
@@ -167,6 +172,13 @@ pub fn mark_seen(screen: &ScreenScene, pieces: &[Piece], index: &TrackIndex, tra
             }
         }
     }
+}
+
+/// Are two edge lines (vertical planes through grid points) the same line? Exact: their
+/// coefficients are proportional (products below 2^26 · 2^50).
+fn same_edge_line(p: &Plane, q: &Plane) -> bool {
+    let (pa, pb, qa, qb) = (p.a as i128, p.b as i128, q.a as i128, q.b as i128);
+    pa * qb == pb * qa && pa * q.d == qa * p.d && pb * q.d == qb * p.d
 }
 
 /// Does grid point `p` lie on the edge line `l`? Exact.
@@ -270,12 +282,52 @@ pub fn segments(tracks: &[Track], samples: &Samples, hidden: bool) -> Vec<Segmen
     let mut out = Vec::new();
     for group in &groups {
         let carrier = tracks[group[0]].carrier;
-        let Some(window) = clip_to_convex(&carrier, &view) else {
+        // Lines whose ends are grid points inside the view need no clipping.
+        let inside = group.iter().all(|&t| {
+            tracks[t]
+                .extent
+                .iter()
+                .all(|&(p, q)| in_view(&p) && in_view(&q))
+        });
+        let window = if inside {
+            let (p, q) = tracks[group[0]].extent[0];
+            Some(extent_window(&carrier, group, tracks).unwrap_or((p, q)))
+        } else {
+            clip_to_convex(&carrier, &view)
+        };
+        let Some(window) = window else {
             continue;
         };
         resolve(&carrier, window, group, tracks, samples, hidden, &mut out);
     }
     out
+}
+
+/// Is `at` a grid point inside the view rectangle?
+fn in_view(at: &At) -> bool {
+    let h = (GRID_MAX / 2) as i32;
+    matches!(at, At::Grid([x, y]) if x.abs() <= h && y.abs() <= h)
+}
+
+/// The first and last points of the extents of the tracks of a group: a window holding them
+/// all.
+fn extent_window(carrier: &Carrier, group: &[usize], tracks: &[Track]) -> Option<(At, At)> {
+    let mut lo: Option<(Param, At)> = None;
+    let mut hi: Option<(Param, At)> = None;
+    for &t in group {
+        for &(p, q) in &tracks[t].extent {
+            for at in [p, q] {
+                let v = carrier.param(&at);
+                if lo.as_ref().is_none_or(|(l, _)| v < *l) {
+                    lo = Some((v, at));
+                }
+                if hi.as_ref().is_none_or(|(h, _)| v > *h) {
+                    hi = Some((v, at));
+                }
+            }
+        }
+    }
+    Some((lo?.1, hi?.1))
 }
 
 /// An edge line's exact identity: its coefficients divided by their gcd, the first non-zero of
