@@ -29,6 +29,7 @@ use clap::{Args, Parser, Subcommand};
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use sightline::camera::{CamFile, Camera, CameraSpec, NamedView};
+use sightline::lines::{LineDrawing, LineKind, LineOptions, Visibility};
 use sightline::methods::{self, METHODS, Method, Output};
 use sightline::output::{png, write_with};
 use sightline::pipeline::{self, Fill};
@@ -93,6 +94,10 @@ enum Command {
         after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024\n  sightline bench --soup 1000 --method coverage --repeat 3\n  sightline bench --sphere 100000 --method warnock --size 4096x4096"
     )]
     Bench(BenchArgs),
+    /// Draw the scene's feature lines (silhouettes, boundaries, intersections, creases,
+    /// material edges), visible ones solid and hidden ones dashed, as SVG, JSON, DXF or PDF.
+    #[command(after_help = LINES_EXAMPLES)]
+    Lines(LinesArgs),
 }
 
 #[derive(Args)]
@@ -252,6 +257,10 @@ struct RenderArgs {
     /// the input and the flags).
     #[arg(long)]
     stats: bool,
+    /// Draw the visible feature lines over the filled drawing (shaded with edges), as `sightline
+    /// lines --hidden off` draws them. SVG only.
+    #[arg(long)]
+    lines: bool,
 }
 
 #[derive(Args)]
@@ -382,6 +391,7 @@ fn main() -> ExitCode {
         Command::Info(a) => info(a),
         Command::Compare(a) => compare(a),
         Command::Bench(a) => bench(a),
+        Command::Lines(a) => lines(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -517,6 +527,11 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
         depth: a.depth.is_some(),
         stroke: a.stroke,
         crisp: a.crisp,
+        lines: a.lines.then(|| LineOptions {
+            hidden: false,
+            cull: a.camera.cull,
+            ..LineOptions::default()
+        }),
     };
     if refuses_binary_output(format, &a.output, std::io::stdout().is_terminal())
         || (format == OutputFormat::Png && is_terminal_path(&a.output))
@@ -744,6 +759,180 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
         "  on screen {} (back faces culled {}, frustum culled {}); {}",
         st.visible_polys, st.backface_culled, st.frustum_culled, report
     );
+    Ok(())
+}
+
+const LINES_EXAMPLES: &str = "\
+Examples:
+  sightline lines fixtures/cube.obj -o cube.svg               (visible solid, hidden dashed)
+  sightline lines part.stl --view front --ortho 60 -o front.dxf
+  sightline lines part.obj --crease 45 --hidden off -o part.pdf
+  sightline lines part.obj --qi-max 2 -o part.json            (hidden lines up to 2 faces deep)
+  sightline lines bunny.obj --cam bunny.cam --background 255,255,255 -o - | rsvg-convert > b.png
+  sightline render part.obj --lines -o shaded.svg             (lines over the filled drawing)";
+
+/// The file formats of `sightline lines`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum LineFormat {
+    Svg,
+    Json,
+    Dxf,
+    Pdf,
+}
+
+/// `--hidden`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum HiddenArg {
+    Dashed,
+    Off,
+}
+
+#[derive(Args)]
+struct LinesArgs {
+    #[command(flatten)]
+    input: InputArgs,
+    #[command(flatten)]
+    camera: CameraArgs,
+    /// Output file (.svg, .json, .dxf or .pdf), or - for standard output (SVG unless --to).
+    #[arg(short, long, value_name = "OUT")]
+    output: PathBuf,
+    /// Output format (default: from the output's extension).
+    #[arg(long, value_enum)]
+    to: Option<LineFormat>,
+    /// An edge is a crease where the normals of its two faces differ by more than DEG degrees
+    /// (0 to 180).
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = 30.0,
+        allow_negative_numbers = true
+    )]
+    crease: f64,
+    /// Hidden lines: dashed (ISO 128 type 02, half the visible width), or off.
+    #[arg(long, value_enum, default_value_t = HiddenArg::Dashed)]
+    hidden: HiddenArg,
+    /// Draw hidden lines only up to N faces deep, counting exactly the faces in front of each
+    /// piece (may take longer).
+    #[arg(long, value_name = "N", value_parser = parse_depth, allow_negative_numbers = true)]
+    qi_max: Option<u32>,
+    /// A background rectangle behind the lines, r,g,b in 0..=255 (SVG and PDF; default: none,
+    /// so that the lines can be laid over other content).
+    #[arg(long, value_parser = parse_background, value_name = "R,G,B", allow_hyphen_values = true)]
+    background: Option<Background>,
+}
+
+/// A count of at least 0.
+fn parse_depth(s: &str) -> Result<u32, String> {
+    s.trim()
+        .parse::<u32>()
+        .map_err(|_| format!("'{s}' is not a whole number >= 0"))
+}
+
+/// The format of `sightline lines`'s output: `--to`, else the extension (any case); standard
+/// output gets SVG.
+fn line_format_for(path: &Path, to: Option<LineFormat>) -> sightline::Result<LineFormat> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    Ok(match (to, ext.as_deref()) {
+        (Some(format), _) => format,
+        (None, Some("svg")) => LineFormat::Svg,
+        (None, Some("json")) => LineFormat::Json,
+        (None, Some("dxf")) => LineFormat::Dxf,
+        (None, Some("pdf")) => LineFormat::Pdf,
+        _ if path.as_os_str() == "-" => LineFormat::Svg,
+        _ => {
+            return Err(sightline::Error::Output(format!(
+                "{}: unknown output extension for lines (use .svg, .json, .dxf or .pdf, or --to)",
+                path.display()
+            )));
+        }
+    })
+}
+
+/// The strokes of `drawing` counted by visibility and kind, one line: `12 strokes: visible 9
+/// (silhouette 6, crease 3), hidden 3 (crease 3)`.
+fn stroke_summary(drawing: &LineDrawing) -> String {
+    let mut parts = Vec::new();
+    for visibility in [Visibility::Visible, Visibility::Hidden] {
+        let of = |kind| {
+            drawing
+                .strokes
+                .iter()
+                .filter(|s| (s.visibility, s.kind) == (visibility, kind))
+                .count()
+        };
+        let kinds: Vec<String> = LineKind::ALL
+            .iter()
+            .filter(|&&k| of(k) > 0)
+            .map(|&k| format!("{} {}", k.name(), of(k)))
+            .collect();
+        if !kinds.is_empty() {
+            let total: usize = LineKind::ALL.iter().map(|&k| of(k)).sum();
+            parts.push(format!(
+                "{} {total} ({})",
+                visibility.name(),
+                kinds.join(", ")
+            ));
+        }
+    }
+    let n = drawing.strokes.len();
+    match parts.is_empty() {
+        true => format!("{n} strokes"),
+        false => format!("{n} strokes: {}", parts.join(", ")),
+    }
+}
+
+fn lines(a: LinesArgs) -> sightline::Result<()> {
+    use sightline::output::{dxf, line_json, line_svg, pdf};
+    let bad = |m: String| Err(sightline::Error::Options(m));
+    let format = line_format_for(&a.output, a.to)?;
+    if !(0.0..=180.0).contains(&a.crease) {
+        return bad(format!(
+            "--crease must be in [0, 180] degrees, got {}",
+            a.crease
+        ));
+    }
+    if a.qi_max.is_some() && a.hidden == HiddenArg::Off {
+        return bad("--qi-max applies to hidden lines: it does nothing with --hidden off".into());
+    }
+    if a.background.is_some() && matches!(format, LineFormat::Json | LineFormat::Dxf) {
+        return bad("--background applies to SVG and PDF output only".into());
+    }
+    if format == LineFormat::Pdf
+        && ((a.output.as_os_str() == "-" && std::io::stdout().is_terminal())
+            || is_terminal_path(&a.output))
+    {
+        return Err(sightline::Error::Output(
+            "not writing a binary PDF to a terminal: redirect standard output (-o - > out.pdf), or give a file (-o out.pdf)".into(),
+        ));
+    }
+    let scene = load_scene(&a.input)?;
+    let camera = camera_for(&a.camera, &scene)?;
+    let options = LineOptions {
+        crease_deg: a.crease,
+        hidden: a.hidden == HiddenArg::Dashed,
+        qi_max: a.qi_max,
+        cull: a.camera.cull,
+    };
+    let lines =
+        with_bars(|report| sightline::lines::line_drawing(&scene, &camera, &options, report))?;
+    let svg_options = line_svg::LineSvgOptions {
+        background: match a.background {
+            Some(Background::Color(c)) => Some(c.map(|v| v as f64 / 255.0)),
+            _ => None,
+        },
+        ..line_svg::LineSvgOptions::default()
+    };
+    let drawing = &lines.drawing;
+    let bytes = match format {
+        LineFormat::Svg => line_svg::write_line_svg(drawing, &svg_options).into_bytes(),
+        LineFormat::Json => line_json::write_line_json(drawing).into_bytes(),
+        LineFormat::Dxf => dxf::write_dxf(drawing, &dxf::DxfOptions::default())?,
+        LineFormat::Pdf => pdf::pdf_of_svg(&line_svg::write_line_svg(drawing, &svg_options))?,
+    };
+    write_with(&a.output, |w| w.write_all(&bytes))?;
+    eprintln!("{}", stroke_summary(drawing));
     Ok(())
 }
 

@@ -11,8 +11,10 @@
 use crate::camera::Camera;
 use crate::draw::{DrawOptions, draw};
 use crate::error::{Error, Result};
+use crate::lines::LineOptions;
 use crate::methods::{self, Engine, Method, Output, names_with};
 use crate::output::drawing::Drawing;
+use crate::output::line_svg::{LineSvgOptions, add_line_layers};
 use crate::output::{json, png, raster_drawing, svg};
 use crate::paint::{Fill, Paint, screen_paints, to_u8};
 use crate::pipeline::colorize_painted;
@@ -50,7 +52,7 @@ impl Background {
 }
 
 /// What a render writes, and how. Each field is a flag of `sightline render`.
-#[derive(Clone, Copy)]
+#[derive(Clone)]
 pub struct RenderOptions {
     /// The output format (`--to`, or [`output_for`] the output's name).
     pub format: Output,
@@ -68,6 +70,10 @@ pub struct RenderOptions {
     pub stroke: bool,
     /// Ask viewers not to anti-alias (SVG, `--crisp`).
     pub crisp: bool,
+    /// Draw the line drawing of the same scene and camera over the filled one (SVG,
+    /// `--lines`: the shaded-with-edges view). Its `cull` should be the one `screen` was
+    /// prepared with.
+    pub lines: Option<LineOptions>,
 }
 
 impl RenderOptions {
@@ -82,6 +88,7 @@ impl RenderOptions {
             depth: false,
             stroke: false,
             crisp: false,
+            lines: None,
         }
     }
 
@@ -147,6 +154,7 @@ impl RenderOptions {
             ("--stroke", self.stroke),
             ("--crisp", self.crisp),
             ("--background none", self.background == Background::None),
+            ("--lines", self.lines.is_some()),
         ];
         if let Some((flag, _)) = svg_only.iter().find(|(_, given)| *given)
             && format != Output::Svg
@@ -424,7 +432,13 @@ pub fn render(
                         stroke: options.stroke.then_some(([0.0; 3], 0.5)),
                         crisp: options.crisp,
                     };
-                    Body::Text(svg::write_svg(&drawing, &svg_options))
+                    let mut doc = svg::document(&drawing, &svg_options);
+                    if let Some(line_options) = &options.lines {
+                        let lines =
+                            crate::lines::line_drawing(scene, camera, line_options, report)?;
+                        doc = add_line_layers(doc, &lines.drawing, &LineSvgOptions::default());
+                    }
+                    Body::Text(svg::document_text(doc))
                 }
                 Output::Json => {
                     let mut stats = visible.stats;
@@ -503,10 +517,10 @@ mod tests {
         assert!(render_bytes(&cube, &json) == golden("cube.json"));
         let png = RenderOptions::new(Output::Png);
         assert!(render_bytes(&cube, &png) == golden("cube_zbuffer.png"));
-        let bsp = png.with_method(method("bsp").unwrap());
+        let bsp = png.clone().with_method(method("bsp").unwrap());
         let bars = fixture("cyclic_bars.obj");
         assert!(render_bytes(&bars, &bsp) == golden("cyclic_bars_bsp.png"));
-        let abuffer = png.with_method(method("abuffer").unwrap());
+        let abuffer = png.clone().with_method(method("abuffer").unwrap());
         let glass = fixture("seed_transparent.x3d");
         assert!(render_bytes(&glass, &abuffer) == golden("seed_transparent_abuffer.png"));
         let mut primitives = fixture("primitives.x3d");
@@ -526,12 +540,12 @@ mod tests {
         let png = RenderOptions::new(Output::Png);
         let stroked = RenderOptions {
             stroke: true,
-            ..png
+            ..png.clone()
         };
         assert!(err(stroked, &lights).starts_with("--stroke applies to SVG output only"));
         let ids = RenderOptions {
             fill: Fill::Id,
-            ..png
+            ..png.clone()
         };
         let shiny = SceneLights {
             specular: 0.5,
@@ -548,19 +562,19 @@ mod tests {
         assert!(err(zbuffer_svg, &lights).starts_with("--method zbuffer draws pixels"));
         let depth = RenderOptions {
             depth: true,
-            ..png.with_method(method("coverage").unwrap())
+            ..png.clone().with_method(method("coverage").unwrap())
         };
         assert_eq!(err(depth, &lights), "--depth needs --method zbuffer");
         let gouraud = RenderOptions {
             shading: Shading::Gouraud,
-            ..png.with_method(method("abuffer").unwrap())
+            ..png.clone().with_method(method("abuffer").unwrap())
         };
         assert!(err(gouraud, &lights).starts_with("--shading gouraud needs --method"));
         let dull = SceneLights {
             specular: -1.0,
             ..SceneLights::default()
         };
-        assert!(err(png, &dull).starts_with("--specular must be"));
+        assert!(err(png.clone(), &dull).starts_with("--specular must be"));
         // What applies passes, and the method is the format's default.
         assert_eq!(png.check(&shiny).unwrap().name, "zbuffer");
         assert_eq!(

@@ -135,19 +135,31 @@ pub fn write_json(
         faces,
         stats,
     };
+    pretty_inline(&doc, INLINE_DEPTH)
+}
+
+/// `doc` as JSON in the layout of [`RingsInline`] with arrays `inline_depth` containers deep or
+/// more on one line, ending with a newline.
+pub(super) fn pretty_inline<T: Serialize>(doc: &T, inline_depth: usize) -> String {
     let mut out = Vec::new();
-    let mut ser = serde_json::Serializer::with_formatter(&mut out, RingsInline::default());
+    let formatter = RingsInline {
+        inline_depth,
+        ..RingsInline::default()
+    };
+    let mut ser = serde_json::Serializer::with_formatter(&mut out, formatter);
     doc.serialize(&mut ser)
         .expect("JSON of plain data into memory cannot fail");
     out.push(b'\n');
     String::from_utf8(out).expect("serde_json writes UTF-8")
 }
 
-/// serde_json's pretty layout, except that an array nested [`INLINE_DEPTH`] containers deep or
-/// more, and everything inside it, is written compactly on one line.
-#[derive(Default)]
+/// serde_json's pretty layout, except that an array nested `inline_depth` containers deep or
+/// more ([`INLINE_DEPTH`] by default), and everything inside it, is written compactly on one
+/// line.
 struct RingsInline {
     pretty: PrettyFormatter<'static>,
+    /// The container depth from which arrays are written on one line.
+    inline_depth: usize,
     /// Containers (arrays and objects) open.
     depth: usize,
     /// The container depth at which compact writing began.
@@ -158,10 +170,21 @@ struct RingsInline {
 /// on one line: in our schema a face's colours and each of its regions.
 const INLINE_DEPTH: usize = 5;
 
+impl Default for RingsInline {
+    fn default() -> Self {
+        RingsInline {
+            pretty: PrettyFormatter::default(),
+            inline_depth: INLINE_DEPTH,
+            depth: 0,
+            compact_from: None,
+        }
+    }
+}
+
 impl Formatter for RingsInline {
     fn begin_array<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
         self.depth += 1;
-        if self.compact_from.is_none() && self.depth >= INLINE_DEPTH {
+        if self.compact_from.is_none() && self.depth >= self.inline_depth {
             self.compact_from = Some(self.depth);
         }
         match self.compact_from {

@@ -19,7 +19,11 @@
 
 pub mod canonical;
 pub mod drawing;
+pub mod dxf;
 pub mod json;
+pub mod line_json;
+pub mod line_svg;
+pub mod pdf;
 pub mod png;
 pub mod raster_drawing;
 pub mod svg;

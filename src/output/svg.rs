@@ -35,6 +35,12 @@ pub struct SvgOptions {
 
 /// The SVG document of `drawing`. Coordinates must be finite (as every [`Drawing`] keeps them).
 pub fn write_svg(drawing: &Drawing, options: &SvgOptions) -> String {
+    document_text(document(drawing, options))
+}
+
+/// The SVG document of `drawing` as a tree, for adding layers over it (as `render --lines`
+/// adds [`super::line_svg::add_line_layers`]); [`document_text`] writes it.
+pub fn document(drawing: &Drawing, options: &SvgOptions) -> Document {
     let (w, h) = (drawing.width, drawing.height);
     let mut doc = Document::new()
         .set("viewBox", format!("0 0 {w} {h}"))
@@ -84,7 +90,12 @@ pub fn write_svg(drawing: &Drawing, options: &SvgOptions) -> String {
         }
         group.append(path);
     }
-    let mut out = doc.add(group).to_string();
+    doc.add(group)
+}
+
+/// The text of an SVG document, ending with a newline.
+pub fn document_text(doc: Document) -> String {
+    let mut out = doc.to_string();
     out.push('\n');
     out
 }
