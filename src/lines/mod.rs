@@ -12,6 +12,7 @@
 
 pub mod drawing;
 pub mod features;
+pub mod plot_order;
 
 pub use drawing::{LineDrawing, LineKind, Stroke, Visibility};
 
