@@ -65,4 +65,5 @@ pub mod project;
 pub mod raster;
 pub mod render;
 pub mod report;
+pub mod sheet;
 pub mod visibility;

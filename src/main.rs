@@ -38,6 +38,7 @@ use sightline::raster::renderer::RasterOptions;
 use sightline::render::{self, Background, RenderOptions};
 use sightline::report::SceneReport;
 use sightline::scene::{self, CameraLights, DEFAULT_SHININESS, Format, Light, Scene, SceneLights};
+use sightline::sheet;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -98,6 +99,10 @@ enum Command {
     /// material edges), visible ones solid and hidden ones dashed, as SVG, JSON, DXF or PDF.
     #[command(after_help = LINES_EXAMPLES)]
     Lines(LinesArgs),
+    /// Lay out a drawing sheet: aligned orthographic hidden-line views and one pictorial view
+    /// at a standard scale, with border and title block, as SVG in millimetres.
+    #[command(after_help = SHEET_EXAMPLES)]
+    Sheet(SheetArgs),
 }
 
 #[derive(Args)]
@@ -316,6 +321,81 @@ struct BenchArgs {
     camera: CameraArgs,
 }
 
+const SHEET_EXAMPLES: &str = "\
+Examples:
+  sightline sheet part.obj -o part.svg                        (A3, third angle: front, top, right, iso)
+  sightline sheet part.obj -o part.svg --projection first --paper a4 --date 2026-01-31
+  sightline sheet part.stl -o part.svg --views front,right,top --scale 1:2 --hidden off
+  sightline sheet part.obj --units in -o - > part.svg
+
+Model coordinates are mm unless --units says otherwise; the scale is the largest of 1:1, 1:2,
+1:5, 1:10, ... and 2:1, 5:1, 10:1, ... at which the views fit, or --scale. Third angle puts the
+top view above the front view and the right view to its right; first angle puts the top view
+below and the right view to its left.";
+
+#[derive(Args)]
+struct SheetArgs {
+    #[command(flatten)]
+    input: InputArgs,
+    /// Output file (.svg), or - for standard output.
+    #[arg(short, long, value_name = "OUT")]
+    output: PathBuf,
+    /// The views, comma-separated, each at most once: front, back, top, bottom, left, right
+    /// (orthographic) and iso (pictorial).
+    #[arg(long, value_parser = parse_sheet_views, default_value = "front,top,right,iso")]
+    views: SheetViews,
+    /// Where the views go around the front view: third angle (top above, right to the right)
+    /// or first angle (top below, right to the left).
+    #[arg(long, value_enum, default_value_t = sheet::ProjectionMethod::Third)]
+    projection: sheet::ProjectionMethod,
+    /// Paper size (landscape unless --portrait).
+    #[arg(long, value_enum, default_value_t = sheet::Paper::A3)]
+    paper: sheet::Paper,
+    /// Portrait paper.
+    #[arg(long)]
+    portrait: bool,
+    /// Scale paper:model, 1:N or N:1 (default: the largest of the standard series that fits).
+    #[arg(long, value_parser = sheet::Scale::parse, value_name = "1:N|N:1")]
+    scale: Option<sheet::Scale>,
+    /// The unit of the model's coordinates.
+    #[arg(long, value_enum, default_value_t = sheet::Units::Mm)]
+    units: sheet::Units,
+    /// The date in the title block (left blank without it: the output never depends on the
+    /// clock).
+    #[arg(long, value_parser = sheet::SheetDate::parse, value_name = "YYYY-MM-DD")]
+    date: Option<sheet::SheetDate>,
+    /// An edge is a crease line when its faces' normals differ by more than this, degrees.
+    #[arg(long, value_name = "DEG", default_value_t = 30.0, value_parser = parse_crease, allow_negative_numbers = true)]
+    crease: f64,
+    /// Hidden lines: dashed, or not drawn.
+    #[arg(long, value_enum, default_value_t = SheetHidden::Dashed)]
+    hidden: SheetHidden,
+}
+
+/// `--views` of `sheet`.
+#[derive(Clone, Debug)]
+struct SheetViews(Vec<NamedView>);
+
+fn parse_sheet_views(s: &str) -> Result<SheetViews, String> {
+    sheet::parse_views(s).map(SheetViews)
+}
+
+/// `--hidden` of `sheet`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum SheetHidden {
+    Dashed,
+    Off,
+}
+
+/// `--crease`: an angle in [0, 180] degrees.
+fn parse_crease(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|d| (0.0..=180.0).contains(d))
+        .ok_or_else(|| format!("'{s}' is not an angle in [0, 180] degrees"))
+}
+
 /// The comma-separated values of a flag, or an error naming the first that does not parse
 /// (`'{value}' is {not_one}`).
 fn parse_list<T: std::str::FromStr>(s: &str, not_one: &str) -> Result<Vec<T>, String> {
@@ -392,6 +472,7 @@ fn main() -> ExitCode {
         Command::Compare(a) => compare(a),
         Command::Bench(a) => bench(a),
         Command::Lines(a) => lines(a),
+        Command::Sheet(a) => sheet_command(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -597,6 +678,42 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
         eprintln!("{}", rendered.detail);
     }
     Ok(())
+}
+
+fn sheet_command(a: SheetArgs) -> sightline::Result<()> {
+    let pdf = a
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("pdf"));
+    let scene = load_scene(&a.input)?;
+    let title = a
+        .input
+        .input
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    let options = sheet::SheetOptions {
+        views: a.views.0,
+        method: a.projection,
+        paper: a.paper,
+        portrait: a.portrait,
+        scale: a.scale,
+        units: a.units,
+        date: a.date,
+        title,
+        lines: sightline::lines::LineOptions {
+            crease_deg: a.crease,
+            hidden: a.hidden == SheetHidden::Dashed,
+            ..Default::default()
+        },
+    };
+    let sheet = with_bars(|report| sheet::sheet(&scene, &options, report))?;
+    let svg = sheet.svg();
+    if pdf {
+        // The sheet's text is drawn as strokes: no font is needed.
+        let bytes = sightline::output::pdf::pdf_of_svg(&svg)?;
+        return write_with(&a.output, |w| w.write_all(&bytes));
+    }
+    write_with(&a.output, |w| w.write_all(svg.as_bytes()))
 }
 
 /// A method's face id at every pixel centre, and its time after projection.

@@ -15,6 +15,7 @@ pub mod chain;
 pub mod drawing;
 pub mod features;
 pub mod intersections;
+pub mod plot_order;
 pub mod tracks;
 
 pub use drawing::{LineDrawing, LineKind, Stroke, Visibility};
