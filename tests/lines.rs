@@ -223,9 +223,14 @@ fn faces_in_front(screen: &ScreenScene, own: &[u32], p: &[BigRational; 2], z: &B
 }
 
 /// Every drawn segment's visibility is the brute-force answer at exact interior points of it
-/// (its midpoint and the points a third of the way from each end).
+/// (its midpoint and the points a third of the way from each end), and so is its quantitative
+/// invisibility (the lines counted with `--qi-max`).
 fn check_visibility(scene: &Scene, camera: &Camera) -> usize {
-    let (prepared, lines) = exact(scene, camera, &LineOptions::default());
+    let options = LineOptions {
+        qi_max: Some(u32::MAX),
+        ..LineOptions::default()
+    };
+    let (prepared, lines) = exact(scene, camera, &options);
     let mut checked = 0;
     for s in &lines.segments {
         let track = &lines.tracks[s.track as usize];
@@ -246,6 +251,7 @@ fn check_visibility(scene: &Scene, camera: &Camera) -> usize {
                 "segment {s:?} of {:?} {:?}: {qi} faces in front",
                 track.kind, track.faces
             );
+            assert_eq!(s.label.qi, qi, "segment {s:?}: quantitative invisibility");
             checked += 1;
         }
     }
@@ -401,7 +407,11 @@ fn a_face_seen_edge_on_still_meets_the_face_it_passes_through() {
         .collect();
     assert_eq!(tracks.len(), 1);
     assert_eq!(tracks[0].rule, SeenRule::Unoccluded);
-    let segments = sightline::lines::tracks::segments(&tracks, &Samples::new(200, 200), true);
+    let segments = sightline::lines::tracks::segments(
+        &tracks,
+        &Samples::new(200, 200),
+        &LineOptions::default(),
+    );
     let meeting: Vec<&Segment> = segments.iter().collect();
     let visible: Vec<_> = meeting
         .iter()
@@ -461,4 +471,24 @@ fn faces_sharing_a_corner_meet_only_where_they_cross_beyond_it() {
     assert_eq!(meetings(1.0), 1);
     // One runs along +x, the other along -x: their planes meet on the x axis, they only touch.
     assert_eq!(meetings(-1.0), 0);
+}
+
+#[test]
+fn qi_max_keeps_hidden_lines_up_to_that_many_faces_deep() {
+    let scene = random_triangles(30, 7);
+    let camera = support::camera::soup_camera((300, 200));
+    let qi_of = |qi_max| {
+        let options = LineOptions {
+            qi_max,
+            ..LineOptions::default()
+        };
+        let (_, lines) = exact(&scene, &camera, &options);
+        lines.segments.iter().map(|s| s.label.qi).max().unwrap_or(0)
+    };
+    let deepest = qi_of(Some(u32::MAX));
+    assert!(deepest >= 3, "the soup has lines {deepest} faces deep");
+    assert_eq!(qi_of(Some(1)), 1);
+    assert_eq!(qi_of(Some(2)), 2);
+    // Without --qi-max, hidden lines say "at least one".
+    assert_eq!(qi_of(None), 1);
 }

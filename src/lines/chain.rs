@@ -58,10 +58,7 @@ pub fn strokes(segments: &[Segment]) -> Vec<Stroke> {
             out.push(Stroke {
                 visibility: label.visibility,
                 kind: label.kind,
-                qi: match label.visibility {
-                    super::Visibility::Visible => 0,
-                    super::Visibility::Hidden => 1,
-                },
+                qi: label.qi,
                 points: ids.iter().map(|&v| g.points[v as usize]).collect(),
                 closed,
             });
@@ -320,6 +317,7 @@ mod tests {
             label: Label {
                 visibility: Visibility::Visible,
                 kind: LineKind::Silhouette,
+                qi: 0,
             },
             track: 0,
             at: [At::Grid([0, 0]); 2],

@@ -383,7 +383,7 @@ fn side_at(line: &Line, c: GridPoint) -> Ordering {
 }
 
 /// The polygon's convex parts, each as its side lines with the inside positive.
-fn convex_parts(screen: &ScreenScene, p: &ScreenPoly) -> Vec<Vec<Line>> {
+pub(crate) fn convex_parts(screen: &ScreenScene, p: &ScreenPoly) -> Vec<Vec<Line>> {
     let corners = screen.corners(p);
     // Work counter-clockwise.
     let ccw: Vec<GridPoint> = if crate::exact::twice_signed_area(corners) > 0 {
@@ -406,7 +406,7 @@ fn convex_parts(screen: &ScreenScene, p: &ScreenPoly) -> Vec<Vec<Line>> {
 }
 
 /// The common part of two spans of `carrier`, if it has length.
-fn overlap(carrier: &Carrier, a: (At, At), b: (At, At)) -> Option<(At, At)> {
+pub(crate) fn overlap(carrier: &Carrier, a: (At, At), b: (At, At)) -> Option<(At, At)> {
     let lo = if carrier.param(&a.0) >= carrier.param(&b.0) {
         a.0
     } else {

@@ -228,7 +228,10 @@ pub fn exact_lines(
     };
     mark_seen(screen, pieces, &index, &mut tracks);
     mark_occluded(pieces, &mut tracks);
-    let segments = tracks::segments(&tracks, &samples, options.hidden);
+    if options.hidden && options.qi_max.is_some() {
+        tracks::mark_faces_in_front(screen, &mut tracks);
+    }
+    let segments = tracks::segments(&tracks, &samples, options);
     (ExactLines { tracks, segments }, stats)
 }
 

@@ -24,6 +24,7 @@
 //! precedence) is drawn, once. That is the drafting rule that a visible line hides a hidden
 //! line behind it.
 
+use super::LineOptions;
 use super::along::{At, Carrier, Param};
 use super::drawing::{LineKind, Visibility};
 use crate::exact::polygon::{Boundary, Piece};
@@ -50,6 +51,9 @@ pub struct Track {
     pub extent: Vec<(At, At)>,
     /// Spans read off the visible pieces, as its [`SeenRule`] says.
     pub seen: [Vec<(At, At)>; 2],
+    /// For quantitative invisibility: one span per face in front of the track, where that
+    /// face lies strictly in front of it ([`mark_faces_in_front`]); `None` when not counted.
+    pub in_front: Option<Vec<(At, At)>>,
     /// How the spans decide where it is seen.
     pub rule: SeenRule,
 }
@@ -88,6 +92,7 @@ impl Track {
             depth,
             extent,
             seen: [Vec::new(), Vec::new()],
+            in_front: None,
             rule,
         }
     }
@@ -196,6 +201,9 @@ pub struct Label {
     pub visibility: Visibility,
     /// Its kind.
     pub kind: LineKind,
+    /// Quantitative invisibility: 0 when seen; when hidden, the number of faces in front if it
+    /// was counted ([`mark_faces_in_front`]), else 1 ("at least one").
+    pub qi: u32,
 }
 
 /// A drawn segment.
@@ -262,7 +270,7 @@ fn clip_to_region(carrier: &Carrier, lines: &[Line], closed: bool) -> Option<(At
 
 /// The drawn segments of `tracks`: each screen line's tracks resolved together (see the module
 /// docs), clipped to the view, hidden parts left out unless `hidden`.
-pub fn segments(tracks: &[Track], samples: &Samples, hidden: bool) -> Vec<Segment> {
+pub fn segments(tracks: &[Track], samples: &Samples, options: &LineOptions) -> Vec<Segment> {
     let view = view_lines();
     // Tracks on the same screen line, in order of first appearance.
     let mut groups: Vec<Vec<usize>> = Vec::new();
@@ -298,7 +306,7 @@ pub fn segments(tracks: &[Track], samples: &Samples, hidden: bool) -> Vec<Segmen
         let Some(window) = window else {
             continue;
         };
-        resolve(&carrier, window, group, tracks, samples, hidden, &mut out);
+        resolve(&carrier, window, group, tracks, samples, options, &mut out);
     }
     out
 }
@@ -363,6 +371,8 @@ enum Change {
     Extent(usize, i32),
     /// Track `t` is seen beside its polygon `which` from here (+1) or not (-1).
     Seen(usize, usize, i32),
+    /// One more face lies in front of track `t` from here (+1), or one fewer (-1).
+    Front(usize, i32),
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -372,7 +382,7 @@ fn resolve(
     group: &[usize],
     tracks: &[Track],
     samples: &Samples,
-    hidden: bool,
+    options: &LineOptions,
     out: &mut Vec<Segment>,
 ) {
     let mut events: Vec<(Param, At, Change)> = Vec::new();
@@ -405,12 +415,16 @@ fn resolve(
                 );
             }
         }
+        for &s in tracks[t].in_front.iter().flatten() {
+            span(s, Change::Front(t, 1), Change::Front(t, -1), &mut events);
+        }
     }
     events.sort_by_key(|e| e.0);
     let slot = |t: usize| group.iter().position(|&u| u == t).expect("in the group");
     let mut window_open = 0;
     let mut extent = vec![0i32; group.len()];
     let mut seen = vec![[0i32; 2]; group.len()];
+    let mut front = vec![0i32; group.len()];
     // The segment being built: its label and first point.
     let mut open: Option<((Label, usize), At)> = None;
     let mut i = 0;
@@ -422,6 +436,7 @@ fn resolve(
                 Change::Window(d) => window_open += d,
                 Change::Extent(t, d) => extent[slot(t)] += d,
                 Change::Seen(t, w, d) => seen[slot(t)][w] += d,
+                Change::Front(t, d) => front[slot(t)] += d,
             }
             i += 1;
         }
@@ -440,17 +455,25 @@ fn resolve(
                         SeenRule::Unoccluded => s1 == 0,
                         SeenRule::Behind => false,
                     };
+                    let (visibility, qi) = if is_seen {
+                        (Visibility::Visible, 0)
+                    } else if track.in_front.is_some() {
+                        // A degenerate tie the visible set broke the other way may count none.
+                        (Visibility::Hidden, front[s].max(1) as u32)
+                    } else {
+                        (Visibility::Hidden, 1)
+                    };
                     let label = Label {
-                        visibility: if is_seen {
-                            Visibility::Visible
-                        } else {
-                            Visibility::Hidden
-                        },
+                        visibility,
                         kind: track.kind,
+                        qi,
                     };
                     (label, t)
                 })
-                .filter(|(l, _)| hidden || l.visibility == Visibility::Visible)
+                .filter(|(l, _)| {
+                    l.visibility == Visibility::Visible
+                        || (options.hidden && options.qi_max.is_none_or(|m| l.qi <= m))
+                })
                 .min()
         } else {
             None
@@ -579,4 +602,62 @@ fn track_box(track: &Track) -> [f64; 4] {
         }
     }
     [b[0] - 2.0, b[1] - 2.0, b[2] + 2.0, b[3] + 2.0]
+}
+
+/// Counts, for every track, the faces of `screen` strictly in front of it (quantitative
+/// invisibility): for each face other than its own whose box meets the track's, the span where
+/// the track crosses the face's interior (each convex part) and the face's plane is nearer
+/// than the track, decided exactly. The spans go to `in_front`.
+pub fn mark_faces_in_front(screen: &ScreenScene, tracks: &mut [Track]) {
+    let polys = &screen.polys;
+    let boxes: Vec<[f64; 4]> = polys
+        .iter()
+        .map(|p| {
+            let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+            for c in screen.corners(p) {
+                b = [
+                    b[0].min(c.x as f64),
+                    b[1].min(c.y as f64),
+                    b[2].max(c.x as f64),
+                    b[3].max(c.y as f64),
+                ];
+            }
+            [b[0] - 1.0, b[1] - 1.0, b[2] + 1.0, b[3] + 1.0]
+        })
+        .collect();
+    let mut grid = BoxGrid::over(&boxes, boxes.len());
+    for (i, b) in boxes.iter().enumerate() {
+        grid.insert(i as u32, b);
+    }
+    let mut parts: Vec<Option<Vec<Vec<Line>>>> = vec![None; polys.len()];
+    let mut near: Vec<u32> = Vec::new();
+    for track in tracks.iter_mut() {
+        near.clear();
+        grid.visit(&track_box(track), |_| true, |i| near.push(i));
+        near.sort_unstable();
+        near.dedup();
+        let mut spans = Vec::new();
+        for &i in &near {
+            let poly = &polys[i as usize];
+            if track.faces.contains(&poly.face) {
+                continue;
+            }
+            let parts = parts[i as usize]
+                .get_or_insert_with(|| super::intersections::convex_parts(screen, poly));
+            for part in parts.iter() {
+                for &(lo, hi) in &track.extent {
+                    let Some(inside) = clip_to_region(&track.carrier, part, false) else {
+                        continue;
+                    };
+                    let Some(both) =
+                        super::intersections::overlap(&track.carrier, inside, (lo, hi))
+                    else {
+                        continue;
+                    };
+                    spans.extend(in_front(track, both, &poly.plane));
+                }
+            }
+        }
+        track.in_front = Some(spans);
+    }
 }
