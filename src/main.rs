@@ -317,6 +317,10 @@ struct BenchArgs {
     /// Method to time after projection.
     #[arg(long, value_parser = method_arg(), default_value = "zbuffer")]
     method: &'static Method,
+    /// Also time the hidden-line drawing: the visible set with every face opaque, then the
+    /// lines read off it (`sightline lines`), with the line counts.
+    #[arg(long)]
+    lines: bool,
     #[command(flatten)]
     camera: CameraArgs,
 }
@@ -876,7 +880,61 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
         "  on screen {} (back faces culled {}, frustum culled {}); {}",
         st.visible_polys, st.backface_culled, st.frustum_culled, report
     );
+    if a.lines {
+        bench_lines(&scene, &camera, a.camera.cull, repeat, median);
+    }
     Ok(())
+}
+
+/// `bench --lines`: the visible set every line drawing starts from, and the lines stage after
+/// it, medians of `repeat` runs in one process.
+fn bench_lines(
+    scene: &Scene,
+    camera: &Camera,
+    cull: CullMode,
+    repeat: usize,
+    median: impl Fn(Vec<f64>) -> f64,
+) {
+    use sightline::visibility::Strategy;
+    let options = sightline::lines::LineOptions {
+        cull,
+        ..Default::default()
+    };
+    let prepared = pipeline::prepare(scene, camera, cull);
+    let (mut visible_times, mut line_times) = (Vec::new(), Vec::new());
+    let mut lines = None;
+    for _ in 0..repeat {
+        let t = Instant::now();
+        let visible =
+            sightline::visibility::CoverageMap.visible_set(&prepared.screen, &|_| false, None);
+        visible_times.push(t.elapsed().as_secs_f64());
+        let t = Instant::now();
+        lines = Some(sightline::lines::lines_of(
+            scene,
+            camera,
+            &prepared,
+            &visible.pieces,
+            &options,
+        ));
+        line_times.push(t.elapsed().as_secs_f64());
+    }
+    let lines = lines.expect("repeat >= 1");
+    let (tv, tl) = (median(visible_times), median(line_times));
+    println!("  visible set      {tv:9.4} s  (coverage map, every face opaque)");
+    println!(
+        "  lines            {tl:9.4} s  ({:.2}x the visible set)",
+        tl / tv.max(1e-9)
+    );
+    let f = &lines.stats.features;
+    println!(
+        "  features: silhouette {}, boundary {}, intersection {}, crease {}, material {}",
+        f[0], f[1], f[2], f[3], f[4]
+    );
+    println!(
+        "  strokes {} (fewest possible {})",
+        lines.drawing.strokes.len(),
+        lines.stats.paths_minimum
+    );
 }
 
 const LINES_EXAMPLES: &str = "\

@@ -170,57 +170,149 @@ pub fn meetings(
     out
 }
 
-/// Every two boxes (a < b) of `boxes` (x0, y0, z0, x1, y1, z1) whose closed extents meet (a
-/// filter: the caller decides exactly). A 3D grid of about `boxes.len()` cells whose slabs
-/// along each axis hold about equal numbers of box centres (so that perspective depth, crowded
-/// near the far plane, is cut as finely as anything else); a pair is reported in the one cell
-/// holding the corner where both boxes start. Order: by cell, then by box.
+/// Every two boxes of `boxes` (x0, y0, z0, x1, y1, z1) whose closed extents meet, each pair
+/// once (a filter: the caller decides exactly): a bounding-volume hierarchy (median splits of
+/// the box centres on the longest axis, leaves of a few boxes) joined with itself, which copes
+/// with boxes of every size (long thin CAD triangles and fine ones). Deterministic order.
 fn overlapping_pairs(boxes: &[[f64; 6]]) -> Vec<(usize, usize)> {
-    if boxes.len() < 2 {
-        return Vec::new();
-    }
-    let per_axis = ((boxes.len() as f64).cbrt().ceil() as usize).clamp(1, 96);
-    // Slab boundaries per axis: quantiles of the box centres.
-    let bounds: Vec<Vec<f64>> = (0..3)
-        .map(|k| {
-            let mut c: Vec<f64> = boxes.iter().map(|b| 0.5 * (b[k] + b[k + 3])).collect();
-            c.sort_unstable_by(f64::total_cmp);
-            (1..per_axis).map(|s| c[s * c.len() / per_axis]).collect()
-        })
-        .collect();
-    // The slab of a value: how many boundaries lie at or below it.
-    let slab = |v: f64, k: usize| bounds[k].partition_point(|&b| b <= v);
-    let ranges: Vec<[usize; 6]> = boxes
-        .iter()
-        .map(|b| std::array::from_fn(|i| slab(b[i], i % 3)))
-        .collect();
-    let index = |x: usize, y: usize, z: usize| (z * per_axis + y) * per_axis + x;
-    let mut cells: Vec<Vec<u32>> = vec![Vec::new(); per_axis * per_axis * per_axis];
-    for (i, r) in ranges.iter().enumerate() {
-        for z in r[2]..=r[5] {
-            for y in r[1]..=r[4] {
-                for x in r[0]..=r[3] {
-                    cells[index(x, y, z)].push(i as u32);
-                }
-            }
-        }
+    let mut ids: Vec<u32> = (0..boxes.len() as u32).collect();
+    let mut nodes = Vec::new();
+    if !boxes.is_empty() {
+        build(boxes, &mut ids, 0, &mut nodes);
     }
     let mut pairs = Vec::new();
-    for (c, cell) in cells.iter().enumerate() {
-        for (k, &a) in cell.iter().enumerate() {
-            let (ba, ra) = (&boxes[a as usize], &ranges[a as usize]);
-            for &b in &cell[k + 1..] {
-                let (bb, rb) = (&boxes[b as usize], &ranges[b as usize]);
-                if (0..3).any(|i| ba[i] > bb[i + 3] || bb[i] > ba[i + 3]) {
-                    continue;
-                }
-                if index(ra[0].max(rb[0]), ra[1].max(rb[1]), ra[2].max(rb[2])) == c {
-                    pairs.push((a as usize, b as usize));
+    if !nodes.is_empty() {
+        join_self(&nodes, &ids, boxes, 0, &mut pairs);
+    }
+    pairs
+}
+
+/// A node of the hierarchy: its box, and either its two children or its run of `ids`.
+struct Node {
+    bounds: [f64; 6],
+    children: Option<(usize, usize)>,
+    run: (usize, usize),
+}
+
+const LEAF: usize = 8;
+
+fn union(boxes: &[[f64; 6]], ids: &[u32]) -> [f64; 6] {
+    let mut u = [f64::MAX, f64::MAX, f64::MAX, f64::MIN, f64::MIN, f64::MIN];
+    for &i in ids {
+        let b = &boxes[i as usize];
+        for k in 0..3 {
+            u[k] = u[k].min(b[k]);
+            u[k + 3] = u[k + 3].max(b[k + 3]);
+        }
+    }
+    u
+}
+
+fn meet(a: &[f64; 6], b: &[f64; 6]) -> bool {
+    (0..3).all(|k| a[k] <= b[k + 3] && b[k] <= a[k + 3])
+}
+
+/// Builds the subtree over `ids` (starting at `offset` in the whole list); returns its index.
+fn build(boxes: &[[f64; 6]], ids: &mut [u32], offset: usize, nodes: &mut Vec<Node>) -> usize {
+    let at = nodes.len();
+    nodes.push(Node {
+        bounds: union(boxes, ids),
+        children: None,
+        run: (offset, offset + ids.len()),
+    });
+    if ids.len() > LEAF {
+        let centre = |i: u32, k: usize| boxes[i as usize][k] + boxes[i as usize][k + 3];
+        let axis = (0..3)
+            .max_by(|&j, &k| {
+                let spread = |k: usize| {
+                    let (lo, hi) = ids.iter().fold((f64::MAX, f64::MIN), |(l, h), &i| {
+                        (l.min(centre(i, k)), h.max(centre(i, k)))
+                    });
+                    hi - lo
+                };
+                spread(j).total_cmp(&spread(k))
+            })
+            .expect("three axes");
+        let mid = ids.len() / 2;
+        ids.select_nth_unstable_by(mid, |&a, &b| {
+            centre(a, axis).total_cmp(&centre(b, axis)).then(a.cmp(&b))
+        });
+        let (left, right) = ids.split_at_mut(mid);
+        let l = build(boxes, left, offset, nodes);
+        let r = build(boxes, right, offset + mid, nodes);
+        nodes[at].children = Some((l, r));
+    }
+    at
+}
+
+fn join_self(
+    nodes: &[Node],
+    ids: &[u32],
+    boxes: &[[f64; 6]],
+    n: usize,
+    out: &mut Vec<(usize, usize)>,
+) {
+    match nodes[n].children {
+        Some((l, r)) => {
+            join_self(nodes, ids, boxes, l, out);
+            join_self(nodes, ids, boxes, r, out);
+            join(nodes, ids, boxes, l, r, out);
+        }
+        None => {
+            let run = &ids[nodes[n].run.0..nodes[n].run.1];
+            for (k, &a) in run.iter().enumerate() {
+                for &b in &run[k + 1..] {
+                    if meet(&boxes[a as usize], &boxes[b as usize]) {
+                        out.push((a.min(b) as usize, a.max(b) as usize));
+                    }
                 }
             }
         }
     }
-    pairs
+}
+
+fn join(
+    nodes: &[Node],
+    ids: &[u32],
+    boxes: &[[f64; 6]],
+    a: usize,
+    b: usize,
+    out: &mut Vec<(usize, usize)>,
+) {
+    if !meet(&nodes[a].bounds, &nodes[b].bounds) {
+        return;
+    }
+    match (nodes[a].children, nodes[b].children) {
+        (None, None) => {
+            let (ra, rb) = (nodes[a].run, nodes[b].run);
+            for &p in &ids[ra.0..ra.1] {
+                for &q in &ids[rb.0..rb.1] {
+                    if meet(&boxes[p as usize], &boxes[q as usize]) {
+                        out.push((p.min(q) as usize, p.max(q) as usize));
+                    }
+                }
+            }
+        }
+        // Split the node that has more boxes (or the only inner one).
+        (Some((l, r)), None) => {
+            join(nodes, ids, boxes, l, b, out);
+            join(nodes, ids, boxes, r, b, out);
+        }
+        (None, Some((l, r))) => {
+            join(nodes, ids, boxes, a, l, out);
+            join(nodes, ids, boxes, a, r, out);
+        }
+        (Some((al, ar)), Some((bl, br))) => {
+            let size = |n: usize| nodes[n].run.1 - nodes[n].run.0;
+            if size(a) >= size(b) {
+                join(nodes, ids, boxes, al, b, out);
+                join(nodes, ids, boxes, ar, b, out);
+            } else {
+                join(nodes, ids, boxes, a, bl, out);
+                join(nodes, ids, boxes, a, br, out);
+            }
+        }
+    }
 }
 
 /// For two triangles with a common corner V that the meeting line of their planes passes
