@@ -35,28 +35,31 @@ pub enum At {
 /// An exact position along a carrier: an f64 value with a proven error bound, and what it
 /// takes to compute it exactly when two positions are too close for the bounds to decide.
 #[derive(Clone, Copy, Debug)]
-pub struct Param {
+pub struct Param<'a> {
     /// The position, within `err` of the exact one.
     approx: f64,
     err: f64,
     /// The point and its carrier, for the exact comparison.
     at: At,
-    carrier: Line,
-    along_x: bool,
-    negate: bool,
+    carrier: &'a Carrier,
 }
 
-impl Param {
+impl Param<'_> {
+    /// The point.
+    pub fn at(&self) -> At {
+        self.at
+    }
+
     /// `num / den` (`den > 0`), exactly.
     fn exact(&self) -> (I512, I512) {
         let (num, den) = match &self.at {
-            At::Grid([x, y]) => (wide(if self.along_x { *x } else { *y }), wide(1)),
+            At::Grid([x, y]) => (wide(if self.carrier.along_x { *x } else { *y }), wide(1)),
             At::Cross(m) => {
-                let [a0, b0, d0] = self.carrier.exact();
+                let [a0, b0, d0] = self.carrier.line.exact();
                 let [a1, b1, d1] = m.exact();
                 let den = a0 * b1 - a1 * b0;
                 debug_assert!(!den.is_zero(), "a crossing line is not parallel");
-                let num = if self.along_x {
+                let num = if self.carrier.along_x {
                     b0 * d1 - b1 * d0
                 } else {
                     a1 * d0 - a0 * d1
@@ -68,25 +71,25 @@ impl Param {
                 }
             }
         };
-        (if self.negate { -num } else { num }, den)
+        (if self.carrier.negate { -num } else { num }, den)
     }
 }
 
-impl PartialEq for Param {
+impl PartialEq for Param<'_> {
     fn eq(&self, other: &Self) -> bool {
         self.cmp(other) == Ordering::Equal
     }
 }
 
-impl Eq for Param {}
+impl Eq for Param<'_> {}
 
-impl PartialOrd for Param {
+impl PartialOrd for Param<'_> {
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
         Some(self.cmp(other))
     }
 }
 
-impl Ord for Param {
+impl Ord for Param<'_> {
     fn cmp(&self, other: &Self) -> Ordering {
         // The difference of the two f64 values errs by their bounds and one rounding.
         let diff = self.approx - other.approx;
@@ -122,7 +125,6 @@ impl Ord for Param {
 pub struct Carrier {
     /// The kernel line.
     pub line: Line,
-    coef: [I512; 3],
     /// Positions are x coordinates (else y).
     along_x: bool,
     /// Positions are negated so that they grow along the direction (b, -a).
@@ -133,25 +135,29 @@ impl Carrier {
     /// The carrier of `line`, directed along (b, -a): for an edge line `Plane::edge(p, q)`, from
     /// p to q.
     pub fn new(line: Line) -> Carrier {
-        let coef = line.exact();
-        let [a, b, _] = coef;
-        let along_x = b.unsigned_abs() >= a.unsigned_abs();
-        // Moving along (b, -a), x grows when b > 0 and y grows when a < 0.
-        let negate = if along_x {
-            b.is_negative()
-        } else {
-            !a.is_negative()
+        // Only the signs and the larger of |a| and |b| matter: exact in i64 for an edge line.
+        let (along_x, a_negative, b_negative) = match &line {
+            Line::Edge(p) => (p.b.unsigned_abs() >= p.a.unsigned_abs(), p.a < 0, p.b < 0),
+            Line::Cut(..) => {
+                let [a, b, _] = line.exact();
+                (
+                    b.unsigned_abs() >= a.unsigned_abs(),
+                    a.is_negative(),
+                    b.is_negative(),
+                )
+            }
         };
+        // Moving along (b, -a), x grows when b > 0 and y grows when a < 0.
+        let negate = if along_x { b_negative } else { !a_negative };
         Carrier {
             line,
-            coef,
             along_x,
             negate,
         }
     }
 
     /// The position of `at` along the carrier.
-    pub fn param(&self, at: &At) -> Param {
+    pub fn param(&self, at: &At) -> Param<'_> {
         let (value, err) = match at {
             At::Grid([x, y]) => (if self.along_x { *x } else { *y } as f64, 0.0),
             At::Cross(m) => match crossing_with_error(&self.line, m) {
@@ -163,9 +169,7 @@ impl Carrier {
             approx: if self.negate { -value } else { value },
             err,
             at: *at,
-            carrier: self.line,
-            along_x: self.along_x,
-            negate: self.negate,
+            carrier: self,
         }
     }
 
@@ -192,7 +196,7 @@ impl Carrier {
 
     /// The sign of `m` on the carrier when they are parallel (the same everywhere on it).
     pub fn side_of_parallel(&self, m: &Line) -> Ordering {
-        let [a0, b0, d0] = self.coef;
+        let [a0, b0, d0] = self.line.exact();
         let [a1, b1, d1] = m.exact();
         // m at a point of the carrier, (0, -d0/b0) or (-d0/a0, 0), times that divisor.
         let (value, divisor) = if !b0.is_zero() {
@@ -211,17 +215,17 @@ impl Carrier {
 
 /// A piece of a carrier between two points, `from` before `to`.
 #[derive(Clone, Copy, Debug)]
-pub struct Span {
+pub struct Span<'a> {
     /// Its first end.
-    pub from: (Param, At),
+    pub from: (Param<'a>, At),
     /// Its last end.
-    pub to: (Param, At),
+    pub to: (Param<'a>, At),
 }
 
-impl Span {
+impl<'a> Span<'a> {
     /// The span between two points of `carrier`, in its direction; `None` when they are the same
     /// point.
-    pub fn between(carrier: &Carrier, a: At, b: At) -> Option<Span> {
+    pub fn between(carrier: &'a Carrier, a: At, b: At) -> Option<Span<'a>> {
         let (pa, pb) = (carrier.param(&a), carrier.param(&b));
         match pa.cmp(&pb) {
             Ordering::Less => Some(Span {

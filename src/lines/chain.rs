@@ -20,7 +20,8 @@
 
 use super::drawing::Stroke;
 use super::tracks::{Label, Segment};
-use std::collections::{BTreeMap, HashMap};
+use rustc_hash::FxHashMap as HashMap;
+use std::collections::BTreeMap;
 
 /// Vertex ids of segment ends (by output bits) and, per label, the segments as vertex pairs.
 struct Graph {
@@ -29,7 +30,7 @@ struct Graph {
 }
 
 fn graph(segments: &[Segment]) -> Graph {
-    let mut ids: HashMap<[u64; 2], u32> = HashMap::new();
+    let mut ids: HashMap<[u64; 2], u32> = HashMap::default();
     let mut points = Vec::new();
     let mut id = |p: [f64; 2]| {
         // -0 and 0 are one point.
@@ -80,7 +81,7 @@ pub fn minimum_strokes(segments: &[Segment]) -> usize {
                 degree[a as usize] += 1;
                 degree[b as usize] += 1;
             }
-            let mut odd: HashMap<usize, usize> = HashMap::new();
+            let mut odd: HashMap<usize, usize> = HashMap::default();
             for &[a, b] in edges {
                 for v in [a, b] {
                     let root = uf.find(v as usize);
@@ -100,7 +101,7 @@ pub fn minimum_strokes(segments: &[Segment]) -> usize {
 /// Chains the edges of one label: polylines of vertex ids, and whether each is closed.
 fn chain(points: &[[f64; 2]], edges: &[[u32; 2]]) -> Vec<(Vec<u32>, bool)> {
     // Incident edges per vertex, in edge order.
-    let mut incident: HashMap<u32, Vec<usize>> = HashMap::new();
+    let mut incident: HashMap<u32, Vec<usize>> = HashMap::default();
     let mut order: Vec<u32> = Vec::new();
     for (e, &[a, b]) in edges.iter().enumerate() {
         for v in [a, b] {
@@ -114,7 +115,7 @@ fn chain(points: &[[f64; 2]], edges: &[[u32; 2]]) -> Vec<(Vec<u32>, bool)> {
         }
     }
     // partner[(e, end)]: the edge continuing e through its end `end` (0: a, 1: b).
-    let mut partner: HashMap<(usize, usize), (usize, usize)> = HashMap::new();
+    let mut partner: HashMap<(usize, usize), (usize, usize)> = HashMap::default();
     for &v in &order {
         let inc = &incident[&v];
         let ends: Vec<(usize, usize)> = inc
@@ -220,7 +221,7 @@ fn pair_straightest(
 fn splice_loops(mut strokes: Vec<(Vec<u32>, bool)>) -> Vec<(Vec<u32>, bool)> {
     let mut alive = vec![true; strokes.len()];
     // The strokes through each vertex, in stroke order.
-    let mut through: HashMap<u32, Vec<usize>> = HashMap::new();
+    let mut through: HashMap<u32, Vec<usize>> = HashMap::default();
     for (s, (path, _)) in strokes.iter().enumerate() {
         for &v in path {
             let list = through.entry(v).or_default();

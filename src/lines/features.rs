@@ -24,7 +24,7 @@ use super::drawing::LineKind;
 use crate::project::{Orientation, ScreenScene};
 use crate::scene::Scene;
 use glam::DVec3;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// A side of a face: corner `k` of `face` to corner `k + 1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -77,7 +77,8 @@ pub fn weld(positions: &[DVec3]) -> (Vec<u32>, Vec<u32>) {
         let bits = |v: f64| if v == 0.0 { 0 } else { v.to_bits() };
         [bits(p.x), bits(p.y), bits(p.z)]
     };
-    let mut ids: HashMap<[u64; 3], u32> = HashMap::with_capacity(positions.len());
+    let mut ids: HashMap<[u64; 3], u32> =
+        HashMap::with_capacity_and_hasher(positions.len(), Default::default());
     let mut first = Vec::new();
     let id = positions
         .iter()
@@ -111,6 +112,7 @@ pub fn features(scene: &Scene, screen: &ScreenScene, crease_deg: f64) -> Feature
     }
     sides.sort_unstable();
     let cos_crease = crease_deg.to_radians().cos();
+    let normals: Vec<DVec3> = scene.faces.iter().map(|f| scene.face_normal(f)).collect();
     let mut edges = Vec::new();
     let mut edge_of_side = vec![u32::MAX; scene.corners.len()];
     for group in sides.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
@@ -122,7 +124,7 @@ pub fn features(scene: &Scene, screen: &ScreenScene, crease_deg: f64) -> Feature
         }
         let kind = match group {
             [one] => Some(classify_one(one)),
-            [s, t] => classify_two(scene, screen, s, t, cos_crease),
+            [s, t] => classify_two(scene, screen, &normals, s, t, cos_crease),
             _ => Some(LineKind::Boundary),
         };
         let Some(kind) = kind else { continue };
@@ -155,6 +157,7 @@ fn classify_one(_: &(u32, u32, u32, u32, bool)) -> LineKind {
 fn classify_two(
     scene: &Scene,
     screen: &ScreenScene,
+    normals: &[DVec3],
     s: &(u32, u32, u32, u32, bool),
     t: &(u32, u32, u32, u32, bool),
     cos_crease: f64,
@@ -174,7 +177,7 @@ fn classify_two(
         _ => {}
     }
     let (fs, ft) = (&scene.faces[s.2 as usize], &scene.faces[t.2 as usize]);
-    let (ns, mut nt) = (scene.face_normal(fs), scene.face_normal(ft));
+    let (ns, mut nt) = (normals[s.2 as usize], normals[t.2 as usize]);
     // Consistently wound neighbours run along their shared edge in opposite directions.
     if s.4 == t.4 {
         nt = -nt;

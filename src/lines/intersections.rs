@@ -164,9 +164,7 @@ pub fn meetings(
             });
         }
     };
-    for (a, b) in overlapping_pairs(&boxes) {
-        on_pair(a, b);
-    }
+    for_each_overlapping_pair(&boxes, &mut on_pair);
     out
 }
 
@@ -174,17 +172,13 @@ pub fn meetings(
 /// once (a filter: the caller decides exactly): a bounding-volume hierarchy (median splits of
 /// the box centres on the longest axis, leaves of a few boxes) joined with itself, which copes
 /// with boxes of every size (long thin CAD triangles and fine ones). Deterministic order.
-fn overlapping_pairs(boxes: &[[f64; 6]]) -> Vec<(usize, usize)> {
+fn for_each_overlapping_pair(boxes: &[[f64; 6]], out: &mut impl FnMut(usize, usize)) {
     let mut ids: Vec<u32> = (0..boxes.len() as u32).collect();
     let mut nodes = Vec::new();
     if !boxes.is_empty() {
         build(boxes, &mut ids, 0, &mut nodes);
+        join_self(&nodes, &ids, boxes, 0, out);
     }
-    let mut pairs = Vec::new();
-    if !nodes.is_empty() {
-        join_self(&nodes, &ids, boxes, 0, &mut pairs);
-    }
-    pairs
 }
 
 /// A node of the hierarchy: its box, and either its two children or its run of `ids`.
@@ -222,16 +216,16 @@ fn build(boxes: &[[f64; 6]], ids: &mut [u32], offset: usize, nodes: &mut Vec<Nod
     });
     if ids.len() > LEAF {
         let centre = |i: u32, k: usize| boxes[i as usize][k] + boxes[i as usize][k + 3];
+        // The axis along which the box centres spread most.
+        let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+        for &i in ids.iter() {
+            for k in 0..3 {
+                lo[k] = lo[k].min(centre(i, k));
+                hi[k] = hi[k].max(centre(i, k));
+            }
+        }
         let axis = (0..3)
-            .max_by(|&j, &k| {
-                let spread = |k: usize| {
-                    let (lo, hi) = ids.iter().fold((f64::MAX, f64::MIN), |(l, h), &i| {
-                        (l.min(centre(i, k)), h.max(centre(i, k)))
-                    });
-                    hi - lo
-                };
-                spread(j).total_cmp(&spread(k))
-            })
+            .max_by(|&j, &k| (hi[j] - lo[j]).total_cmp(&(hi[k] - lo[k])))
             .expect("three axes");
         let mid = ids.len() / 2;
         ids.select_nth_unstable_by(mid, |&a, &b| {
@@ -250,7 +244,7 @@ fn join_self(
     ids: &[u32],
     boxes: &[[f64; 6]],
     n: usize,
-    out: &mut Vec<(usize, usize)>,
+    out: &mut impl FnMut(usize, usize),
 ) {
     match nodes[n].children {
         Some((l, r)) => {
@@ -263,7 +257,7 @@ fn join_self(
             for (k, &a) in run.iter().enumerate() {
                 for &b in &run[k + 1..] {
                     if meet(&boxes[a as usize], &boxes[b as usize]) {
-                        out.push((a.min(b) as usize, a.max(b) as usize));
+                        out(a.min(b) as usize, a.max(b) as usize);
                     }
                 }
             }
@@ -277,7 +271,7 @@ fn join(
     boxes: &[[f64; 6]],
     a: usize,
     b: usize,
-    out: &mut Vec<(usize, usize)>,
+    out: &mut impl FnMut(usize, usize),
 ) {
     if !meet(&nodes[a].bounds, &nodes[b].bounds) {
         return;
@@ -288,7 +282,7 @@ fn join(
             for &p in &ids[ra.0..ra.1] {
                 for &q in &ids[rb.0..rb.1] {
                     if meet(&boxes[p as usize], &boxes[q as usize]) {
-                        out.push((p.min(q) as usize, p.max(q) as usize));
+                        out(p.min(q) as usize, p.max(q) as usize);
                     }
                 }
             }

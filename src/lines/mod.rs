@@ -31,7 +31,7 @@ use crate::scene::Scene;
 use crate::visibility::{CoverageMap, Strategy};
 use along::At;
 use intersections::FlatFace;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use tracks::{SeenRule, Segment, Track, TrackIndex, mark_occluded, mark_seen};
 
 /// What a line drawing shows.
@@ -88,8 +88,31 @@ pub fn line_drawing(
     report: Option<Report>,
 ) -> crate::Result<Lines> {
     let prepared = crate::pipeline::prepare(scene, camera, options.cull);
-    let visible = CoverageMap.visible_set(&prepared.screen, &|_| false, report);
-    Ok(lines_of(scene, camera, &prepared, &visible.pieces, options))
+    // The lines themselves need no visible set: made on a second thread meanwhile.
+    let (visible, lines) = std::thread::scope(|s| {
+        let lines = s.spawn(|| line_tracks(scene, camera, &prepared, options));
+        let visible = CoverageMap.visible_set(&prepared.screen, &|_| false, report);
+        (
+            visible,
+            lines.join().expect("the line tracks thread does not panic"),
+        )
+    });
+    let (exact, stats) = read_visibility(lines, camera, &prepared.screen, &visible.pieces, options);
+    Ok(drawn(exact, stats, camera))
+}
+
+/// Chains the segments into strokes.
+fn drawn(exact: ExactLines, mut stats: LineStats, camera: &Camera) -> Lines {
+    stats.paths_minimum = chain::minimum_strokes(&exact.segments);
+    let strokes = chain::strokes(&exact.segments);
+    Lines {
+        drawing: LineDrawing {
+            width: camera.width,
+            height: camera.height,
+            strokes,
+        },
+        stats,
+    }
 }
 
 /// The line drawing of `scene` seen by `camera`, read off `pieces`: the exact visible pieces
@@ -102,17 +125,8 @@ pub fn lines_of(
     pieces: &[Piece],
     options: &LineOptions,
 ) -> Lines {
-    let (exact, mut stats) = exact_lines(scene, camera, prepared, pieces, options);
-    stats.paths_minimum = chain::minimum_strokes(&exact.segments);
-    let strokes = chain::strokes(&exact.segments);
-    Lines {
-        drawing: LineDrawing {
-            width: camera.width,
-            height: camera.height,
-            strokes,
-        },
-        stats,
-    }
+    let (exact, stats) = exact_lines(scene, camera, prepared, pieces, options);
+    drawn(exact, stats, camera)
 }
 
 /// The lines before chaining: every track and the segments drawn, with exact ends.
@@ -132,9 +146,28 @@ pub fn exact_lines(
     pieces: &[Piece],
     options: &LineOptions,
 ) -> (ExactLines, LineStats) {
+    let lines = line_tracks(scene, camera, prepared, options);
+    read_visibility(lines, camera, &prepared.screen, pieces, options)
+}
+
+/// Every line of the view, before any visibility: what [`line_tracks`] gives
+/// [`read_visibility`]. It needs no visible set, so it can be made while one is computed.
+pub struct LineTracks {
+    tracks: Vec<Track>,
+    of_side: Vec<u32>,
+    of_cut: HashMap<(u32, u32), u32>,
+    stats: LineStats,
+}
+
+/// The tracks of the feature edges and intersections of `scene` seen by `camera`.
+pub fn line_tracks(
+    scene: &Scene,
+    camera: &Camera,
+    prepared: &Prepared,
+    options: &LineOptions,
+) -> LineTracks {
     let screen = &prepared.screen;
     let features = features::features(scene, screen, options.crease_deg);
-    let samples = Samples::new(camera.width, camera.height);
     let m = camera.view_projection();
     let mut stats = LineStats {
         vertices: features.vertices,
@@ -202,7 +235,7 @@ pub fn exact_lines(
         &all_faces
     };
     let flats = flat_faces(scene, screen, &m);
-    let mut of_cut = HashMap::new();
+    let mut of_cut = HashMap::default();
     for meeting in intersections::meetings(scene, unculled, &flats, &features.weld) {
         stats.features[LineKind::Intersection as usize] += 1;
         let t = tracks.len() as u32;
@@ -222,6 +255,30 @@ pub fn exact_lines(
             },
         ));
     }
+    LineTracks {
+        tracks,
+        of_side,
+        of_cut,
+        stats,
+    }
+}
+
+/// Where the lines are seen, read off `pieces` (the visible set of `screen`), and the segments
+/// drawn.
+pub fn read_visibility(
+    lines: LineTracks,
+    camera: &Camera,
+    screen: &ScreenScene,
+    pieces: &[Piece],
+    options: &LineOptions,
+) -> (ExactLines, LineStats) {
+    let LineTracks {
+        mut tracks,
+        of_side,
+        of_cut,
+        stats,
+    } = lines;
+    let samples = Samples::new(camera.width, camera.height);
     let index = TrackIndex {
         of_side: &of_side,
         of_cut: &of_cut,

@@ -32,8 +32,8 @@ use crate::exact::predicates::{Line, crossing_f64, depth_order_at};
 use crate::exact::{GRID_MAX, GridPoint, Plane, Samples};
 use crate::project::ScreenScene;
 use crate::visibility::grid::BoxGrid;
+use rustc_hash::FxHashMap as HashMap;
 use std::cmp::Ordering;
-use std::collections::HashMap;
 
 /// One line to draw.
 #[derive(Clone, Debug)]
@@ -274,7 +274,7 @@ pub fn segments(tracks: &[Track], samples: &Samples, options: &LineOptions) -> V
     let view = view_lines();
     // Tracks on the same screen line, in order of first appearance.
     let mut groups: Vec<Vec<usize>> = Vec::new();
-    let mut group_of: HashMap<LineKey, usize> = HashMap::new();
+    let mut group_of: HashMap<LineKey, usize> = HashMap::default();
     for (t, track) in tracks.iter().enumerate() {
         match line_key(&track.carrier.line) {
             Some(key) => {
@@ -385,17 +385,17 @@ fn resolve(
     options: &LineOptions,
     out: &mut Vec<Segment>,
 ) {
-    let mut events: Vec<(Param, At, Change)> = Vec::new();
+    let mut events: Vec<(Param, Change)> = Vec::new();
     let span = |(a, b): (At, At), open: Change, close: Change, events: &mut Vec<_>| {
         let (pa, pb) = (carrier.param(&a), carrier.param(&b));
         match pa.cmp(&pb) {
             Ordering::Less => {
-                events.push((pa, a, open));
-                events.push((pb, b, close));
+                events.push((pa, open));
+                events.push((pb, close));
             }
             Ordering::Greater => {
-                events.push((pb, b, open));
-                events.push((pa, a, close));
+                events.push((pb, open));
+                events.push((pa, close));
             }
             Ordering::Equal => {}
         }
@@ -430,9 +430,9 @@ fn resolve(
     let mut i = 0;
     while i < events.len() {
         let here = events[i].0;
-        let at = events[i].1;
+        let at = here.at();
         while i < events.len() && events[i].0 == here {
-            match events[i].2 {
+            match events[i].1 {
                 Change::Window(d) => window_open += d,
                 Change::Extent(t, d) => extent[slot(t)] += d,
                 Change::Seen(t, w, d) => seen[slot(t)][w] += d,
