@@ -372,8 +372,8 @@ struct SheetArgs {
     #[arg(long, value_name = "DEG", default_value_t = 30.0, value_parser = parse_crease, allow_negative_numbers = true)]
     crease: f64,
     /// Hidden lines: dashed, or not drawn.
-    #[arg(long, value_enum, default_value_t = SheetHidden::Dashed)]
-    hidden: SheetHidden,
+    #[arg(long, value_enum, default_value_t = HiddenArg::Dashed)]
+    hidden: HiddenArg,
 }
 
 /// `--views` of `sheet`.
@@ -384,20 +384,13 @@ fn parse_sheet_views(s: &str) -> Result<SheetViews, String> {
     sheet::parse_views(s).map(SheetViews)
 }
 
-/// `--hidden` of `sheet`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-enum SheetHidden {
-    Dashed,
-    Off,
-}
-
 /// `--crease`: an angle in [0, 180] degrees.
 fn parse_crease(s: &str) -> Result<f64, String> {
     s.trim()
         .parse::<f64>()
         .ok()
         .filter(|d| (0.0..=180.0).contains(d))
-        .ok_or_else(|| format!("'{s}' is not an angle in [0, 180] degrees"))
+        .ok_or_else(|| format!("--crease must be in [0, 180] degrees, got '{s}'"))
 }
 
 /// The comma-separated values of a flag, or an error naming the first that does not parse
@@ -706,7 +699,7 @@ fn sheet_command(a: SheetArgs) -> sightline::Result<()> {
         title,
         lines: sightline::lines::LineOptions {
             crease_deg: a.crease,
-            hidden: a.hidden == SheetHidden::Dashed,
+            hidden: a.hidden == HiddenArg::Dashed,
             ..Default::default()
         },
     };
@@ -943,6 +936,7 @@ Examples:
   sightline lines part.stl --view front --ortho 60 -o front.dxf
   sightline lines part.obj --crease 45 --hidden off -o part.pdf
   sightline lines part.obj --qi-max 2 -o part.json            (hidden lines up to 2 faces deep)
+  sightline lines part.obj --order plotter -o part.svg        (short pen-up moves for a plotter)
   sightline lines bunny.obj --cam bunny.cam --background 255,255,255 -o - | rsvg-convert > b.png
   sightline render part.obj --lines -o shaded.svg             (lines over the filled drawing)";
 
@@ -976,12 +970,7 @@ struct LinesArgs {
     to: Option<LineFormat>,
     /// An edge is a crease where the normals of its two faces differ by more than DEG degrees
     /// (0 to 180).
-    #[arg(
-        long,
-        value_name = "DEG",
-        default_value_t = 30.0,
-        allow_negative_numbers = true
-    )]
+    #[arg(long, value_name = "DEG", default_value_t = 30.0, value_parser = parse_crease, allow_negative_numbers = true)]
     crease: f64,
     /// Hidden lines: dashed (ISO 128 type 02, half the visible width), or off.
     #[arg(long, value_enum, default_value_t = HiddenArg::Dashed)]
@@ -994,6 +983,19 @@ struct LinesArgs {
     /// so that the lines can be laid over other content).
     #[arg(long, value_parser = parse_background, value_name = "R,G,B", allow_hyphen_values = true)]
     background: Option<Background>,
+    /// Stroke order: as chained, or for a pen plotter (greedy nearest neighbour, then 2-opt;
+    /// the pen-up travel before and after goes to stderr).
+    #[arg(long, value_enum, default_value_t = StrokeOrder::Chained)]
+    order: StrokeOrder,
+}
+
+/// The order strokes are written in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum StrokeOrder {
+    /// As the chaining made them, grouped by visibility and kind.
+    Chained,
+    /// Short pen-up moves between strokes (within each visibility and kind).
+    Plotter,
 }
 
 /// A count of at least 0.
@@ -1062,12 +1064,6 @@ fn lines(a: LinesArgs) -> sightline::Result<()> {
     use sightline::output::{dxf, line_json, line_svg, pdf};
     let bad = |m: String| Err(sightline::Error::Options(m));
     let format = line_format_for(&a.output, a.to)?;
-    if !(0.0..=180.0).contains(&a.crease) {
-        return bad(format!(
-            "--crease must be in [0, 180] degrees, got {}",
-            a.crease
-        ));
-    }
     if a.qi_max.is_some() && a.hidden == HiddenArg::Off {
         return bad("--qi-max applies to hidden lines: it does nothing with --hidden off".into());
     }
@@ -1090,8 +1086,15 @@ fn lines(a: LinesArgs) -> sightline::Result<()> {
         qi_max: a.qi_max,
         cull: a.camera.cull,
     };
-    let lines =
+    let mut lines =
         with_bars(|report| sightline::lines::line_drawing(&scene, &camera, &options, report))?;
+    if a.order == StrokeOrder::Plotter {
+        let travel = sightline::lines::plot_order::plot_order(&mut lines.drawing);
+        eprintln!(
+            "pen-up travel: {:.1} px as chained, {:.1} px in plotter order",
+            travel.before, travel.after
+        );
+    }
     let svg_options = line_svg::LineSvgOptions {
         background: match a.background {
             Some(Background::Color(c)) => Some(c.map(|v| v as f64 / 255.0)),

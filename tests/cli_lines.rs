@@ -83,7 +83,8 @@ fn an_unknown_extension_is_an_error_naming_it() {
 fn crease_angles_out_of_range_are_errors_naming_the_range() {
     for bad in ["200", "-5", "nan"] {
         let (code, err) = run_err(&["lines", "fixtures/cube.obj", "-o", "-", "--crease", bad]);
-        assert_eq!(code, Some(1), "--crease {bad}: {err}");
+        // A usage error (clap's exit code).
+        assert_eq!(code, Some(2), "--crease {bad}: {err}");
         assert!(
             err.contains("--crease must be in [0, 180] degrees"),
             "--crease {bad}: {err}"
@@ -91,8 +92,8 @@ fn crease_angles_out_of_range_are_errors_naming_the_range() {
     }
     // `=` form, and the ends of the range are fine.
     let (code, err) = run_err(&["lines", "fixtures/cube.obj", "-o", "-", "--crease=-5"]);
-    assert_eq!(code, Some(1));
-    assert!(err.contains("got -5"), "{err}");
+    assert_eq!(code, Some(2));
+    assert!(err.contains("got '-5'"), "{err}");
     for ok in ["0", "180"] {
         run_ok(&[
             "lines",
@@ -189,4 +190,33 @@ fn render_lines_is_refused_for_other_outputs_than_svg() {
             "{out}: {err}"
         );
     }
+}
+
+#[test]
+fn plotter_order_reports_pen_up_travel_that_does_not_grow() {
+    let o = run_ok(&[
+        "lines",
+        "fixtures/cyclic_bars.obj",
+        "--cam",
+        "fixtures/cyclic_bars.cam",
+        "--order",
+        "plotter",
+        "-o",
+        "-",
+    ]);
+    let (out, err) = (
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr),
+    );
+    assert!(out.starts_with("<svg"), "{out}");
+    let line = err
+        .lines()
+        .find(|l| l.starts_with("pen-up travel:"))
+        .unwrap_or_else(|| panic!("no travel in {err}"));
+    let numbers: Vec<f64> = line
+        .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    assert_eq!(numbers.len(), 2, "{line}");
+    assert!(numbers[1] <= numbers[0], "{line}");
 }

@@ -287,7 +287,10 @@ fn bad_flags_are_named() {
         (&["--scale", "1:0"], &["'1:0'"]),
         (&["--date", "2026-02-30"], &["'2026-02-30'", "no day 30"]),
         (&["--paper", "b5"], &["b5"]),
-        (&["--crease", "200"], &["'200' is not an angle"]),
+        (
+            &["--crease", "200"],
+            &["--crease must be in [0, 180] degrees, got '200'"],
+        ),
         (
             &["--scale", "5:1"],
             &["A3 landscape", "do not fit at 5:1", "1:2"],

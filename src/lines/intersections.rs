@@ -399,7 +399,7 @@ pub fn plane_along(p: GridPoint, q: GridPoint) -> Plane {
 }
 
 /// The box of some grid points, one grid unit wider each way (a filter).
-fn points_box(points: &[GridPoint]) -> [f64; 4] {
+pub(crate) fn points_box(points: &[GridPoint]) -> [f64; 4] {
     let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
     for c in points {
         b = [

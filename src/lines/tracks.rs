@@ -612,18 +612,7 @@ pub fn mark_faces_in_front(screen: &ScreenScene, tracks: &mut [Track]) {
     let polys = &screen.polys;
     let boxes: Vec<[f64; 4]> = polys
         .iter()
-        .map(|p| {
-            let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
-            for c in screen.corners(p) {
-                b = [
-                    b[0].min(c.x as f64),
-                    b[1].min(c.y as f64),
-                    b[2].max(c.x as f64),
-                    b[3].max(c.y as f64),
-                ];
-            }
-            [b[0] - 1.0, b[1] - 1.0, b[2] + 1.0, b[3] + 1.0]
-        })
+        .map(|p| super::intersections::points_box(screen.corners(p)))
         .collect();
     let mut grid = BoxGrid::over(&boxes, boxes.len());
     for (i, b) in boxes.iter().enumerate() {
