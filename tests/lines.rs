@@ -492,3 +492,62 @@ fn qi_max_keeps_hidden_lines_up_to_that_many_faces_deep() {
     // Without --qi-max, hidden lines say "at least one".
     assert_eq!(qi_of(None), 1);
 }
+
+#[test]
+fn an_edge_on_face_behind_a_surface_cut_along_its_line_is_hidden() {
+    // Front orthographic view: a big square at z = 0, a small square in front (z = 0.5) whose
+    // right side is x = 0.2, so the visible set cuts the big square's region along x = 0.2;
+    // and a triangle in the plane x = 0.2, seen edge-on, behind the big square (z < 0). Its
+    // edges run exactly along the cut, between two pieces of the big square: hidden.
+    let p = DVec3::new;
+    let mut b = SceneBuilder::new("edge-on behind");
+    support::scenes::add_polygon(
+        &mut b,
+        &[
+            p(-1.0, -1.0, 0.0),
+            p(1.0, -1.0, 0.0),
+            p(1.0, 1.0, 0.0),
+            p(-1.0, 1.0, 0.0),
+        ],
+    );
+    support::scenes::add_polygon(
+        &mut b,
+        &[
+            p(-0.5, -0.5, 0.5),
+            p(0.2, -0.5, 0.5),
+            p(0.2, 0.5, 0.5),
+            p(-0.5, 0.5, 0.5),
+        ],
+    );
+    support::scenes::add_triangle(
+        &mut b,
+        [p(0.2, -0.3, -1.0), p(0.2, 0.3, -1.0), p(0.2, 0.0, -0.5)],
+    );
+    let scene = b.finish().unwrap();
+    let camera = support::camera::front_ortho(4.0, 200, 200);
+    let (prepared, lines) = exact(&scene, &camera, &LineOptions::default());
+    assert_eq!(
+        prepared.screen.orientation[2],
+        sightline::project::Orientation::Flat
+    );
+    let edge_on: Vec<_> = lines
+        .tracks
+        .iter()
+        .filter(|t| t.faces == [2])
+        .cloned()
+        .collect();
+    assert_eq!(edge_on.len(), 3);
+    assert!(edge_on.iter().all(|t| t.rule == SeenRule::Unoccluded));
+    let segments = sightline::lines::tracks::segments(
+        &edge_on,
+        &Samples::new(200, 200),
+        &LineOptions::default(),
+    );
+    assert!(!segments.is_empty());
+    assert!(
+        segments
+            .iter()
+            .all(|s| s.label.visibility == Visibility::Hidden),
+        "{segments:?}"
+    );
+}

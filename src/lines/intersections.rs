@@ -417,18 +417,19 @@ fn screen_box(screen: &ScreenScene, p: &ScreenPoly) -> [f64; 4] {
     points_box(screen.corners(p))
 }
 
-/// The depth range of the polygon's plane over its corners, widened by a grid unit and a
-/// relative margin for the f64 evaluation (a filter).
+/// The depth range of the polygon's plane over its corners (a filter), exactly: the plane's
+/// depth at a corner, `-(a·x + b·y + d) / c`, rounded outward to grid units in i128.
 fn depth_range(screen: &ScreenScene, p: &ScreenPoly) -> [f64; 2] {
     let pl = &p.plane;
-    let (mut lo, mut hi) = (f64::MAX, f64::MIN);
+    let (mut lo, mut hi) = (i128::MAX, i128::MIN);
     for c in screen.corners(p) {
-        let z = -(pl.a as f64 * c.x as f64 + pl.b as f64 * c.y as f64 + pl.d as f64) / pl.c as f64;
-        lo = lo.min(z);
-        hi = hi.max(z);
+        let num = -(pl.a as i128 * c.x as i128 + pl.b as i128 * c.y as i128 + pl.d);
+        let den = pl.c as i128;
+        lo = lo.min(num.div_euclid(den));
+        hi = hi.max(num.div_euclid(den) + 1);
     }
-    let margin = 1.0 + 1e-9 * lo.abs().max(hi.abs());
-    [lo - margin, hi + margin]
+    // Depths are within the grid's range: exact in f64.
+    [lo as f64, hi as f64]
 }
 
 /// Does `line` pass strictly through the polygon: some corner on each side? Exact.

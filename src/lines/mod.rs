@@ -4,9 +4,11 @@
 //! Stages, one module each:
 //! 1. [`features`]: which mesh edges are lines, and of which kind (silhouette, boundary,
 //!    crease, material), with vertices at identical positions welded.
-//! 2. visibility along the lines, read off the exact visible set (work in progress: see
-//!    PROGRESS.md).
-//! 3. chaining into strokes.
+//! 2. [`intersections`]: where faces pass through each other, exactly.
+//! 3. [`tracks`]: where each line is seen, read off the exact visible set, split exactly where
+//!    that changes, with quantitative invisibility when asked ([`along`]: exact points on a
+//!    line and their order).
+//! 4. [`chain`]: strokes, as few as the graph allows; [`plot_order`] for pen plotters.
 //!
 //! The result is a [`LineDrawing`], written by `crate::output` as SVG, JSON, DXF or PDF.
 
@@ -195,14 +197,17 @@ pub fn line_tracks(
         faces.dedup();
         let rule = if faces.iter().any(|&f| on_screen[f as usize]) {
             SeenRule::BesideAFace
-        } else if faces
-            .iter()
-            .any(|&f| screen.orientation[f as usize] == Orientation::Flat)
+        } else if options.cull == CullMode::Auto
+            && !faces
+                .iter()
+                .any(|&f| screen.orientation[f as usize] == Orientation::Flat)
         {
-            SeenRule::Unoccluded
-        } else {
-            // Every face of it is a culled back face: it lies on the far side of a closed mesh.
+            // Every face of it is a back face culled by `--cull auto`, which culls only closed,
+            // consistently oriented meshes the near plane does not cut: it lies on the far
+            // side of a closed mesh.
             SeenRule::Behind
+        } else {
+            SeenRule::Unoccluded
         };
         tracks.push(Track::new(
             Line::Edge(plane),
@@ -305,10 +310,16 @@ fn flat_faces(scene: &Scene, screen: &ScreenScene, m: &glam::DMat4) -> Vec<FlatF
             .map(|p| snap_point(m, p))
             .collect();
         let Some(corners) = corners else { continue };
-        if corners
+        // Edge-on: every corner on one screen line (no area can also mean a bow tie).
+        let Some(&far) = corners
             .iter()
-            .any(|c| (c.x, c.y) != (corners[0].x, corners[0].y))
-        {
+            .find(|c| (c.x, c.y) != (corners[0].x, corners[0].y))
+        else {
+            continue;
+        };
+        let on_line =
+            |c: &GridPoint| crate::exact::predicates::orient2d(corners[0], far, *c).is_eq();
+        if corners.iter().all(on_line) {
             out.push(FlatFace {
                 face: f as u32,
                 corners,

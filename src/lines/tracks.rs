@@ -28,7 +28,7 @@ use super::LineOptions;
 use super::along::{At, Carrier, Param};
 use super::drawing::{LineKind, Visibility};
 use crate::exact::polygon::{Boundary, Piece};
-use crate::exact::predicates::{Line, crossing_f64, depth_order_at};
+use crate::exact::predicates::{Line, depth_order_at};
 use crate::exact::{GRID_MAX, GridPoint, Plane, Samples};
 use crate::project::ScreenScene;
 use crate::visibility::grid::BoxGrid;
@@ -51,6 +51,9 @@ pub struct Track {
     pub extent: Vec<(At, At)>,
     /// Spans read off the visible pieces, as its [`SeenRule`] says.
     pub seen: [Vec<(At, At)>; 2],
+    /// For [`SeenRule::Unoccluded`]: spans where a piece in front lies along the track, beside
+    /// it on its left (`[0]`) or right (`[1]`); in front on both sides, it is hidden.
+    pub beside: [Vec<(At, At)>; 2],
     /// For quantitative invisibility: one span per face in front of the track, where that
     /// face lies strictly in front of it ([`mark_faces_in_front`]); `None` when not counted.
     pub in_front: Option<Vec<(At, At)>>,
@@ -67,7 +70,8 @@ pub enum SeenRule {
     /// first face, `seen[1]` beside the second).
     BesideBothFaces,
     /// A line none of whose faces is on screen, one of them edge-on: seen except where a
-    /// piece lies in front of it (`seen[1]` holds those spans).
+    /// piece lies in front of it (`seen[1]` holds the spans where it crosses one's interior,
+    /// `beside` those where pieces in front lie along it, hiding it when on both sides).
     Unoccluded,
     /// An edge of culled back faces only: on the far side of a closed mesh (culling removes
     /// only back faces of closed, consistently oriented meshes the near plane does not cut),
@@ -92,6 +96,7 @@ impl Track {
             depth,
             extent,
             seen: [Vec::new(), Vec::new()],
+            beside: [Vec::new(), Vec::new()],
             in_front: None,
             rule,
         }
@@ -373,6 +378,8 @@ enum Change {
     Seen(usize, usize, i32),
     /// One more face lies in front of track `t` from here (+1), or one fewer (-1).
     Front(usize, i32),
+    /// A piece in front lies along track `t` on its side `side` from here (+1), or no more (-1).
+    Beside(usize, usize, i32),
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -418,6 +425,16 @@ fn resolve(
         for &s in tracks[t].in_front.iter().flatten() {
             span(s, Change::Front(t, 1), Change::Front(t, -1), &mut events);
         }
+        for side in 0..2 {
+            for &s in &tracks[t].beside[side] {
+                span(
+                    s,
+                    Change::Beside(t, side, 1),
+                    Change::Beside(t, side, -1),
+                    &mut events,
+                );
+            }
+        }
     }
     events.sort_by_key(|e| e.0);
     let slot = |t: usize| group.iter().position(|&u| u == t).expect("in the group");
@@ -425,6 +442,7 @@ fn resolve(
     let mut extent = vec![0i32; group.len()];
     let mut seen = vec![[0i32; 2]; group.len()];
     let mut front = vec![0i32; group.len()];
+    let mut beside = vec![[0i32; 2]; group.len()];
     // The segment being built: its label and first point.
     let mut open: Option<((Label, usize), At)> = None;
     let mut i = 0;
@@ -437,6 +455,7 @@ fn resolve(
                 Change::Extent(t, d) => extent[slot(t)] += d,
                 Change::Seen(t, w, d) => seen[slot(t)][w] += d,
                 Change::Front(t, d) => front[slot(t)] += d,
+                Change::Beside(t, side, d) => beside[slot(t)][side] += d,
             }
             i += 1;
         }
@@ -452,7 +471,7 @@ fn resolve(
                     let is_seen = match track.rule {
                         SeenRule::BesideAFace => s0 > 0 || s1 > 0,
                         SeenRule::BesideBothFaces => s0 > 0 && s1 > 0,
-                        SeenRule::Unoccluded => s1 == 0,
+                        SeenRule::Unoccluded => s1 == 0 && !(beside[s][0] > 0 && beside[s][1] > 0),
                         SeenRule::Behind => false,
                     };
                     let (visibility, qi) = if is_seen {
@@ -542,15 +561,34 @@ pub fn mark_occluded(pieces: &[Piece], tracks: &mut [Track]) {
         near.sort_unstable();
         near.dedup();
         let mut occluded = Vec::new();
+        let mut beside: [Vec<(At, At)>; 2] = [Vec::new(), Vec::new()];
         for &i in &near {
             let piece = &pieces[i as usize];
-            let Some(inside) = clip_to_region(&track.carrier, &piece.lines, false) else {
-                continue;
-            };
-            occluded.extend(in_front(track, inside, &piece.support));
+            if let Some(inside) = clip_to_region(&track.carrier, &piece.lines, false) {
+                occluded.extend(in_front(track, inside, &piece.support));
+            } else if let Some(side) = side_along(&track.carrier, piece)
+                && let Some(along) = clip_to_region(&track.carrier, &piece.lines, true)
+            {
+                // A piece with a side on the line: in front there, it hides the line only
+                // together with one on the other side (the line then runs under a surface).
+                beside[side].extend(in_front(track, along, &piece.support));
+            }
         }
         tracks[t].seen[1] = occluded;
+        tracks[t].beside = beside;
     }
+}
+
+/// When one of `piece`'s lines lies on the carrier: the carrier's side the piece lies on (0:
+/// left, where the carrier's equation is positive; 1: right). Exact.
+fn side_along(carrier: &Carrier, piece: &Piece) -> Option<usize> {
+    let line = piece.lines.iter().find(|l| {
+        carrier.heading(l) == Ordering::Equal && carrier.side_of_parallel(l) == Ordering::Equal
+    })?;
+    // The piece lies on its line's positive side: the carrier's too when their normals agree.
+    let ([a0, b0, _], [a1, b1, _]) = (carrier.line.exact(), line.exact());
+    let same = (a0 * a1 + b0 * b1).is_positive();
+    Some(if same { 0 } else { 1 })
 }
 
 /// The part of span `(lo, hi)` of the track where plane `s` is strictly nearer than the track.
@@ -594,9 +632,11 @@ fn track_box(track: &Track) -> [f64; 4] {
     let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
     for &(p, q) in &track.extent {
         for at in [p, q] {
+            // Correctly rounded: within half an ulp of the exact point.
             let [x, y] = match at {
                 At::Grid([x, y]) => [x as f64, y as f64],
-                At::Cross(m) => crossing_f64(&track.carrier.line, &m),
+                At::Cross(m) => crate::draw::regions::exact_crossing(&track.carrier.line, &m)
+                    .expect("a crossing line is not parallel"),
             };
             b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
         }
@@ -633,17 +673,11 @@ pub fn mark_faces_in_front(screen: &ScreenScene, tracks: &mut [Track]) {
             }
             let parts = parts[i as usize]
                 .get_or_insert_with(|| super::intersections::convex_parts(screen, poly));
+            // Each convex part's open interior once (the parts are disjoint); outside the
+            // track's extent nothing is drawn, so no clipping to it is needed.
             for part in parts.iter() {
-                for &(lo, hi) in &track.extent {
-                    let Some(inside) = clip_to_region(&track.carrier, part, false) else {
-                        continue;
-                    };
-                    let Some(both) =
-                        super::intersections::overlap(&track.carrier, inside, (lo, hi))
-                    else {
-                        continue;
-                    };
-                    spans.extend(in_front(track, both, &poly.plane));
+                if let Some(inside) = clip_to_region(&track.carrier, part, false) {
+                    spans.extend(in_front(track, inside, &poly.plane));
                 }
             }
         }
