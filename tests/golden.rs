@@ -121,39 +121,94 @@ const CASES: &[(&str, &str, &[&str])] = &[
     ),
 ];
 
+/// Hidden-line drawings and sheets: (golden file, the command's arguments before `-o`).
+const LINE_CASES: &[(&str, &[&str])] = &[
+    (
+        "cube_lines.svg",
+        &["lines", "fixtures/cube.obj", "--size", "96x72"],
+    ),
+    (
+        "cube_lines.json",
+        &["lines", "fixtures/cube.obj", "--size", "96x72"],
+    ),
+    (
+        "cube_lines.dxf",
+        &["lines", "fixtures/cube.obj", "--size", "96x72"],
+    ),
+    (
+        "interpenetrating_lines.svg",
+        &["lines", "fixtures/interpenetrating.obj", "--size", "96x72"],
+    ),
+    (
+        "cyclic_bars_lines_qi.json",
+        &[
+            "lines",
+            "fixtures/cyclic_bars.obj",
+            "--cam",
+            "fixtures/cyclic_bars.cam",
+            "--qi-max",
+            "3",
+        ],
+    ),
+    (
+        "cube_sheet.svg",
+        &[
+            "sheet",
+            "fixtures/cube.obj",
+            "--date",
+            "2026-12-02",
+            "--paper",
+            "a4",
+        ],
+    ),
+];
+
+/// Runs `sightline ARGS -o DIR/NAME` and compares the bytes with `tests/golden/NAME` (or
+/// rewrites it when blessing); `Some(message)` when they differ.
+fn differs_from_golden(dir: &Path, name: &str, args: &[&str], bless: bool) -> Option<String> {
+    let out = dir.join(name);
+    let o = Command::new(env!("CARGO_BIN_EXE_sightline"))
+        .args(args)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success(),
+        "{name}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let bytes = std::fs::read(&out).unwrap();
+    let golden = Path::new("tests/golden").join(name);
+    if bless {
+        std::fs::write(&golden, &bytes).unwrap();
+        return None;
+    }
+    match std::fs::read(&golden) {
+        Ok(want) if want == bytes => None,
+        _ => {
+            // Keep what this build wrote, to compare by hand.
+            let kept = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+            std::fs::write(&kept, &bytes).unwrap();
+            Some(format!("{name} (this build's output: {})", kept.display()))
+        }
+    }
+}
+
 #[test]
 fn outputs_match_their_golden_files() {
     let bless = std::env::var_os("SIGHTLINE_BLESS").is_some();
     let dir = tempfile::tempdir().unwrap();
     let mut changed = Vec::new();
     for (name, input, extra) in CASES {
-        let out = dir.path().join(name);
-        let o = Command::new(env!("CARGO_BIN_EXE_sightline"))
-            .args(["render", input, "--size", "96x72", "-o"])
-            .arg(&out)
-            .args(*extra)
-            .output()
-            .unwrap();
-        assert!(
-            o.status.success(),
-            "{name}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
-        let bytes = std::fs::read(&out).unwrap();
-        let golden = Path::new("tests/golden").join(name);
-        if bless {
-            std::fs::write(&golden, &bytes).unwrap();
-            continue;
-        }
-        match std::fs::read(&golden) {
-            Ok(want) if want == bytes => {}
-            _ => {
-                // Keep what this build wrote, to compare by hand.
-                let kept = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-                std::fs::write(&kept, &bytes).unwrap();
-                changed.push(format!("{name} (this build's output: {})", kept.display()));
-            }
-        }
+        let args: Vec<&str> = ["render", input, "--size", "96x72"]
+            .into_iter()
+            .chain(extra.iter().copied())
+            .collect();
+        changed.extend(differs_from_golden(dir.path(), name, &args, bless));
+    }
+    for (name, args) in LINE_CASES {
+        changed.extend(differs_from_golden(dir.path(), name, args, bless));
     }
     assert!(
         changed.is_empty(),

@@ -19,7 +19,7 @@ use sightline::lines::{
     ExactLines, LineKind, LineOptions, Lines, Visibility, exact_lines, lines_of,
 };
 use sightline::pipeline::{Prepared, prepare};
-use sightline::project::{CullMode, ScreenScene};
+use sightline::project::ScreenScene;
 use sightline::scene::{Scene, SceneBuilder, primitives};
 use sightline::visibility::{BspTree, CoverageMap, Strategy};
 use std::collections::HashMap;
@@ -356,14 +356,27 @@ fn every_fixture_draws_its_lines() {
         }
         let scene = sightline::load(&path, None).unwrap();
         let camera = spec_camera(&scene, (200, 150));
-        let lines =
-            sightline::lines::line_drawing(&scene, &camera, &LineOptions::default(), None).unwrap();
-        assert!(!lines.drawing.strokes.is_empty(), "{}", path.display());
+        let draw = || {
+            sightline::lines::line_drawing(&scene, &camera, &LineOptions::default(), None).unwrap()
+        };
+        let lines = draw();
+        let name = path.display();
+        assert!(!lines.drawing.strokes.is_empty(), "{name}");
+        assert_eq!(
+            lines.drawing.strokes.len(),
+            lines.stats.paths_minimum,
+            "{name}"
+        );
         for s in &lines.drawing.strokes {
             assert!(s.points.len() >= 2 && s.points.iter().flatten().all(|v| v.is_finite()));
+            assert!(
+                s.points.windows(2).all(|w| w[0] != w[1]),
+                "{name}: a repeated point"
+            );
         }
+        // The same input gives the same drawing (a second thread makes the lines).
+        assert_eq!(lines.drawing, draw().drawing, "{name}");
     }
-    let _ = CullMode::Auto;
 }
 
 #[test]
