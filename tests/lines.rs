@@ -140,20 +140,56 @@ fn two_crossing_tori_meet_in_closed_loops() {
     ] {
         let camera = fit(&scene, view, ortho, 500, 400);
         let (_, lines) = exact(&scene, &camera, &LineOptions::default());
-        let meeting: Vec<&Segment> = lines
-            .segments
+        // Where the faces meet, visible or not: closed curves, every point with an even number
+        // of neighbours (four where the orthographic view lays the back half of a symmetric
+        // loop exactly on its front half).
+        let samples = Samples::new(500, 400);
+        let meeting: Vec<Segment> = lines
+            .tracks
             .iter()
-            .filter(|s| s.label.kind == LineKind::Intersection)
+            .enumerate()
+            .filter(|(_, t)| t.kind == LineKind::Intersection)
+            .flat_map(|(i, t)| {
+                t.extent.iter().map(move |&(a, b)| Segment {
+                    label: sightline::lines::tracks::Label {
+                        visibility: Visibility::Visible,
+                        kind: LineKind::Intersection,
+                        qi: 0,
+                    },
+                    track: i as u32,
+                    at: [a, b],
+                    ends: [t.carrier.pixel(&a, &samples), t.carrier.pixel(&b, &samples)],
+                })
+            })
             .collect();
         assert!(!meeting.is_empty());
-        let (degree, loops) = degrees_and_components(&meeting);
-        // Visible and hidden together: the meeting curves are closed, every point has an even
-        // number of neighbours (two, or four where the orthographic view lays the back half
-        // of a symmetric loop exactly on its front half).
+        let (degree, loops) = degrees_and_components(&meeting.iter().collect::<Vec<_>>());
         assert!(
             degree.iter().all(|&d| d % 2 == 0),
             "{view:?} ortho {ortho}: open ends {:?}",
             degree.iter().filter(|&&d| d % 2 == 1).count()
+        );
+        // Drawn, a visible line hides the hidden one it lies on: no hidden piece of a meeting
+        // has the ends of a visible one.
+        let ends = |s: &Segment, v: Visibility| {
+            (s.label.kind == LineKind::Intersection && s.label.visibility == v).then(|| {
+                let mut e = s.ends.map(|p| p.map(f64::to_bits));
+                e.sort();
+                e
+            })
+        };
+        let visible: Vec<_> = lines
+            .segments
+            .iter()
+            .filter_map(|s| ends(s, Visibility::Visible))
+            .collect();
+        assert!(
+            lines
+                .segments
+                .iter()
+                .filter_map(|s| ends(s, Visibility::Hidden))
+                .all(|e| !visible.contains(&e)),
+            "{view:?} ortho {ortho}: a hidden meeting drawn on a visible one"
         );
         // The tube of each torus passes through the other's once on each side of its hole.
         assert_eq!(loops, 2, "{view:?}");

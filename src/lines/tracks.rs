@@ -277,21 +277,7 @@ fn clip_to_region(carrier: &Carrier, lines: &[Line], closed: bool) -> Option<(At
 /// docs), clipped to the view, hidden parts left out unless `hidden`.
 pub fn segments(tracks: &[Track], samples: &Samples, options: &LineOptions) -> Vec<Segment> {
     let view = view_lines();
-    // Tracks on the same screen line, in order of first appearance.
-    let mut groups: Vec<Vec<usize>> = Vec::new();
-    let mut group_of: HashMap<LineKey, usize> = HashMap::default();
-    for (t, track) in tracks.iter().enumerate() {
-        match line_key(&track.carrier.line) {
-            Some(key) => {
-                let g = *group_of.entry(key).or_insert_with(|| {
-                    groups.push(Vec::new());
-                    groups.len() - 1
-                });
-                groups[g].push(t);
-            }
-            None => groups.push(vec![t]),
-        }
-    }
+    let groups = same_line_groups(tracks);
     let mut out = Vec::new();
     for group in &groups {
         let carrier = tracks[group[0]].carrier;
@@ -341,6 +327,80 @@ fn extent_window(carrier: &Carrier, group: &[usize], tracks: &[Track]) -> Option
         }
     }
     Some((lo?.1, hi?.1))
+}
+
+/// The tracks grouped by the screen line they lie on, exactly, groups in order of their first
+/// track. Edge lines are grouped by their reduced coefficients; each meeting line (`Line::Cut`)
+/// is then put with the edge lines or meeting lines it equals, found by sorting them in an
+/// exact order of lines.
+fn same_line_groups(tracks: &[Track]) -> Vec<Vec<usize>> {
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    let mut group_of: HashMap<LineKey, usize> = HashMap::default();
+    let mut cuts = Vec::new();
+    for (t, track) in tracks.iter().enumerate() {
+        match line_key(&track.carrier.line) {
+            Some(key) => {
+                let g = *group_of.entry(key).or_insert_with(|| {
+                    groups.push(Vec::new());
+                    groups.len() - 1
+                });
+                groups[g].push(t);
+            }
+            None => cuts.push(t),
+        }
+    }
+    if cuts.is_empty() {
+        return groups;
+    }
+    // Each edge group once (by its first track), then every meeting line, in line order.
+    let mut lines: Vec<(Line, Option<usize>, usize)> = groups
+        .iter()
+        .enumerate()
+        .map(|(g, members)| (tracks[members[0]].carrier.line, Some(g), members[0]))
+        .chain(cuts.iter().map(|&t| (tracks[t].carrier.line, None, t)))
+        .collect();
+    lines.sort_by(|x, y| cmp_lines(&x.0, &y.0).then(x.2.cmp(&y.2)));
+    for run in lines.chunk_by(|x, y| cmp_lines(&x.0, &y.0) == Ordering::Equal) {
+        let target = match run.iter().find_map(|x| x.1) {
+            Some(g) => g,
+            None => {
+                groups.push(Vec::new());
+                groups.len() - 1
+            }
+        };
+        groups[target].extend(run.iter().filter(|x| x.1.is_none()).map(|x| x.2));
+    }
+    for g in &mut groups {
+        g.sort_unstable();
+    }
+    groups.sort_by_key(|g| g[0]);
+    groups
+}
+
+/// An exact total order of screen lines as point sets: by the direction of their normal
+/// (turned into the half-plane a > 0, or a = 0 and b > 0), then by their offset along it.
+/// `Equal` exactly when they are the same line.
+fn cmp_lines(l: &Line, m: &Line) -> Ordering {
+    let normal = |l: &Line| {
+        let [a, b, d] = l.exact();
+        if a.is_negative() || (a.is_zero() && b.is_negative()) {
+            [-a, -b, -d]
+        } else {
+            [a, b, d]
+        }
+    };
+    let ([a0, b0, d0], [a1, b1, d1]) = (normal(l), normal(m));
+    // The second normal turned counter-clockwise from the first: the first comes first.
+    match (b0 * a1).cmp(&(a0 * b1)) {
+        Ordering::Equal => {}
+        turn => return turn,
+    }
+    // Parallel, normals in the same direction: compare d / |n| through the positive ratio.
+    if !a0.is_zero() {
+        (d0 * a1).cmp(&(d1 * a0))
+    } else {
+        (d0 * b1).cmp(&(d1 * b0))
+    }
 }
 
 /// An edge line's exact identity: its coefficients divided by their gcd, the first non-zero of
