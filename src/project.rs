@@ -270,8 +270,7 @@ pub fn snap_segment(m: &glam::DMat4, a: glam::DVec3, b: glam::DVec3) -> Option<[
             (false, true) => p = q + (p - q) * (dq / (dq - dp)),
         }
     }
-    let snap = |p: DVec4| GridPoint::snap(p.x / p.w, p.y / p.w, p.z / p.w);
-    Some([snap(p), snap(q)])
+    Some([snap_clip(p), snap_clip(q)])
 }
 
 /// The grid point of a world point as an unclipped face corner snaps to it; `None` when a
@@ -279,7 +278,12 @@ pub fn snap_segment(m: &glam::DMat4, a: glam::DVec3, b: glam::DVec3) -> Option<[
 /// band).
 pub fn snap_point(m: &glam::DMat4, a: glam::DVec3) -> Option<GridPoint> {
     let p = *m * a.extend(1.0);
-    (outcode(p) & CLIP == 0).then(|| GridPoint::snap(p.x / p.w, p.y / p.w, p.z / p.w))
+    (outcode(p) & CLIP == 0).then(|| snap_clip(p))
+}
+
+/// A clip-space point (inside the clipping planes) divided and snapped to the grid.
+fn snap_clip(p: DVec4) -> GridPoint {
+    GridPoint::snap(p.x / p.w, p.y / p.w, p.z / p.w)
 }
 
 /// Projects, clips, snaps and culls every face of `scene`.
@@ -346,7 +350,6 @@ pub fn project(
             continue;
         }
         let start = points.len();
-        let snap = |p: DVec4| GridPoint::snap(p.x / p.w, p.y / p.w, p.z / p.w);
         // A corner at the (x, y) of the one before it ends a side of no length: the side that
         // starts there is the one that goes on.
         let push =
@@ -365,7 +368,7 @@ pub fn project(
         if or & CLIP == 0 {
             for (k, &c) in corners.iter().enumerate() {
                 push(
-                    snap(clip[c as usize]),
+                    snap_clip(clip[c as usize]),
                     Side::Edge(k as u32),
                     &mut points,
                     &mut sides,
@@ -387,7 +390,7 @@ pub fn project(
                 }
             }
             for &(p, side) in &buf_a {
-                push(snap(p), side, &mut points, &mut sides);
+                push(snap_clip(p), side, &mut points, &mut sides);
             }
         }
         // Close the ring: the last corner may repeat the first (its side, of no length, goes).

@@ -183,6 +183,17 @@ impl Carrier {
         [s.col_of(x), s.row_of(y)]
     }
 
+    /// The positions of two points in the carrier's direction; `None` when they are the same
+    /// point.
+    pub fn ordered(&self, a: At, b: At) -> Option<[Param<'_>; 2]> {
+        let (pa, pb) = (self.param(&a), self.param(&b));
+        match pa.cmp(&pb) {
+            Ordering::Less => Some([pa, pb]),
+            Ordering::Greater => Some([pb, pa]),
+            Ordering::Equal => None,
+        }
+    }
+
     /// Whether `m` crosses the carrier (is not parallel to it).
     pub fn crosses(&self, m: &Line) -> bool {
         self.heading(m) != Ordering::Equal
@@ -209,34 +220,6 @@ impl Carrier {
             s.reverse()
         } else {
             s
-        }
-    }
-}
-
-/// A piece of a carrier between two points, `from` before `to`.
-#[derive(Clone, Copy, Debug)]
-pub struct Span<'a> {
-    /// Its first end.
-    pub from: (Param<'a>, At),
-    /// Its last end.
-    pub to: (Param<'a>, At),
-}
-
-impl<'a> Span<'a> {
-    /// The span between two points of `carrier`, in its direction; `None` when they are the same
-    /// point.
-    pub fn between(carrier: &'a Carrier, a: At, b: At) -> Option<Span<'a>> {
-        let (pa, pb) = (carrier.param(&a), carrier.param(&b));
-        match pa.cmp(&pb) {
-            Ordering::Less => Some(Span {
-                from: (pa, a),
-                to: (pb, b),
-            }),
-            Ordering::Greater => Some(Span {
-                from: (pb, b),
-                to: (pa, a),
-            }),
-            Ordering::Equal => None,
         }
     }
 }

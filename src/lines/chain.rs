@@ -52,7 +52,21 @@ fn graph(segments: &[Segment]) -> Graph {
 
 /// The strokes of `segments`, ordered by label, then as chained.
 pub fn strokes(segments: &[Segment]) -> Vec<Stroke> {
+    strokes_of(&graph(segments))
+}
+
+/// The least number of strokes that draw `segments` (see the module docs), per label summed.
+pub fn minimum_strokes(segments: &[Segment]) -> usize {
+    minimum_of(&graph(segments))
+}
+
+/// [`strokes`] and [`minimum_strokes`] from one graph.
+pub fn strokes_and_minimum(segments: &[Segment]) -> (Vec<Stroke>, usize) {
     let g = graph(segments);
+    (strokes_of(&g), minimum_of(&g))
+}
+
+fn strokes_of(g: &Graph) -> Vec<Stroke> {
     let mut out = Vec::new();
     for (label, edges) in &g.by_label {
         for (ids, closed) in chain(&g.points, edges) {
@@ -68,9 +82,7 @@ pub fn strokes(segments: &[Segment]) -> Vec<Stroke> {
     out
 }
 
-/// The least number of strokes that draw `segments` (see the module docs), per label summed.
-pub fn minimum_strokes(segments: &[Segment]) -> usize {
-    let g = graph(segments);
+fn minimum_of(g: &Graph) -> usize {
     g.by_label
         .values()
         .map(|edges| {

@@ -61,14 +61,6 @@ pub struct Features {
     pub weld: Vec<u32>,
 }
 
-/// How many edges of each kind, and the welding, for reports.
-impl Features {
-    /// The number of feature edges of `kind`.
-    pub fn count(&self, kind: LineKind) -> usize {
-        self.edges.iter().filter(|e| e.kind == kind).count()
-    }
-}
-
 /// Welded vertex ids: one per distinct position, numbered in order of first appearance.
 /// Returns the id of every position and, per id, its first position.
 pub fn weld(positions: &[DVec3]) -> (Vec<u32>, Vec<u32>) {
@@ -123,7 +115,7 @@ pub fn features(scene: &Scene, screen: &ScreenScene, crease_deg: f64) -> Feature
             continue;
         }
         let kind = match group {
-            [one] => Some(classify_one(one)),
+            [_] => Some(LineKind::Boundary),
             [s, t] => classify_two(scene, screen, &normals, s, t, cos_crease),
             _ => Some(LineKind::Boundary),
         };
@@ -147,10 +139,6 @@ pub fn features(scene: &Scene, screen: &ScreenScene, crease_deg: f64) -> Feature
         vertices: first.len(),
         weld: weld_id,
     }
-}
-
-fn classify_one(_: &(u32, u32, u32, u32, bool)) -> LineKind {
-    LineKind::Boundary
 }
 
 /// The kind of an edge of two faces, if it is a feature.

@@ -75,19 +75,18 @@ pub fn meetings(
     }));
     // Convex parts, made when a pair first needs them.
     let mut parts: Vec<Option<Vec<Vec<Line>>>> = vec![None; polys.len()];
-    let welded = |face: u32| -> Vec<u32> {
-        let face = &scene.faces[face as usize];
-        let mut v: Vec<u32> = scene
-            .face_corners(face)
-            .iter()
-            .map(|&c| weld[c as usize])
-            .collect();
-        v.sort_unstable();
-        v.dedup();
-        v
+    // How many welded vertices two faces share (faces have a few corners: no allocation).
+    let shared = |fa: u32, fb: u32| {
+        let ids = |f: u32| {
+            let face = &scene.faces[f as usize];
+            scene.face_corners(face).iter().map(|&c| weld[c as usize])
+        };
+        ids(fb)
+            .enumerate()
+            .filter(|&(k, v)| !ids(fb).take(k).any(|u| u == v) && ids(fa).any(|u| u == v))
+            .count()
     };
-    let shared = |a: &[u32], b: &[u32]| b.iter().filter(|v| a.binary_search(v).is_ok()).count();
-    let share_an_edge = |a: &[u32], b: &[u32]| shared(a, b) >= 2;
+    let share_an_edge = |fa: u32, fb: u32| shared(fa, fb) >= 2;
     // Faces whose every corner lies in their support plane.
     let planar: Vec<bool> = polys
         .iter()
@@ -107,7 +106,7 @@ pub fn meetings(
         if b >= n {
             // An edge-on face and a polygon.
             let flat = &flats[b - n];
-            if !share_an_edge(&welded(flat.face), &welded(polys[a].face)) {
+            if !share_an_edge(flat.face, polys[a].face) {
                 let parts_a = parts[a].get_or_insert_with(|| convex_parts(screen, &polys[a]));
                 out.extend(edge_on_meeting(flat, &polys[a], parts_a));
             }
@@ -127,7 +126,7 @@ pub fn meetings(
         if !straddles(pb, planar[b], &pa.plane) || !straddles(pa, planar[a], &pb.plane) {
             return;
         }
-        match shared(&welded(pa.face), &welded(pb.face)) {
+        match shared(pa.face, pb.face) {
             0 => {}
             1 if planar[a] && planar[b] => {
                 if apart_beyond_corner(screen, pa, pb, &line) == Some(true) {
@@ -372,8 +371,8 @@ fn edge_on_meeting(flat: &FlatFace, b: &ScreenPoly, parts: &[Vec<Line>]) -> Opti
     }
     // A convex face is crossed at exactly two points.
     let [p, q] = crossings[..] else { return None };
-    let inside = super::along::Span::between(&carrier, p, q)?;
-    let inside = (inside.from.1, inside.to.1);
+    let [p, q] = carrier.ordered(p, q)?;
+    let inside = (p.at(), q.at());
     let extent: Vec<(At, At)> = parts
         .iter()
         .filter_map(|part| overlap(&carrier, inside, clip_to_convex(&carrier, part)?))
@@ -494,15 +493,7 @@ pub(crate) fn convex_parts(screen: &ScreenScene, p: &ScreenPoly) -> Vec<Vec<Line
 
 /// The common part of two spans of `carrier`, if it has length.
 pub(crate) fn overlap(carrier: &Carrier, a: (At, At), b: (At, At)) -> Option<(At, At)> {
-    let lo = if carrier.param(&a.0) >= carrier.param(&b.0) {
-        a.0
-    } else {
-        b.0
-    };
-    let hi = if carrier.param(&a.1) <= carrier.param(&b.1) {
-        a.1
-    } else {
-        b.1
-    };
-    (carrier.param(&lo) < carrier.param(&hi)).then_some((lo, hi))
+    let lo = carrier.param(&a.0).max(carrier.param(&b.0));
+    let hi = carrier.param(&a.1).min(carrier.param(&b.1));
+    (lo < hi).then(|| (lo.at(), hi.at()))
 }

@@ -105,8 +105,8 @@ pub fn line_drawing(
 
 /// Chains the segments into strokes.
 fn drawn(exact: ExactLines, mut stats: LineStats, camera: &Camera) -> Lines {
-    stats.paths_minimum = chain::minimum_strokes(&exact.segments);
-    let strokes = chain::strokes(&exact.segments);
+    let (strokes, minimum) = chain::strokes_and_minimum(&exact.segments);
+    stats.paths_minimum = minimum;
     Lines {
         drawing: LineDrawing {
             width: camera.width,

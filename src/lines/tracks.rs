@@ -32,6 +32,8 @@ use crate::exact::predicates::{Line, depth_order_at};
 use crate::exact::{GRID_MAX, GridPoint, Plane, Samples};
 use crate::project::ScreenScene;
 use crate::visibility::grid::BoxGrid;
+use bnum::cast::As;
+use bnum::types::I512;
 use rustc_hash::FxHashMap as HashMap;
 use std::cmp::Ordering;
 
@@ -353,11 +355,13 @@ fn same_line_groups(tracks: &[Track]) -> Vec<Vec<usize>> {
         return groups;
     }
     // Each edge group once (by its first track), then every meeting line, in line order.
-    let mut lines: Vec<(Line, Option<usize>, usize)> = groups
+    // Exact coefficients computed once per line, not per comparison.
+    let mut lines: Vec<(Normalized, Option<usize>, usize)> = groups
         .iter()
         .enumerate()
-        .map(|(g, members)| (tracks[members[0]].carrier.line, Some(g), members[0]))
-        .chain(cuts.iter().map(|&t| (tracks[t].carrier.line, None, t)))
+        .map(|(g, members)| (members[0], Some(g)))
+        .chain(cuts.iter().map(|&t| (t, None)))
+        .map(|(t, g)| (normalized(&tracks[t].carrier.line), g, t))
         .collect();
     lines.sort_by(|x, y| cmp_lines(&x.0, &y.0).then(x.2.cmp(&y.2)));
     for run in lines.chunk_by(|x, y| cmp_lines(&x.0, &y.0) == Ordering::Equal) {
@@ -377,29 +381,56 @@ fn same_line_groups(tracks: &[Track]) -> Vec<Vec<usize>> {
     groups
 }
 
-/// An exact total order of screen lines as point sets: by the direction of their normal
-/// (turned into the half-plane a > 0, or a = 0 and b > 0), then by their offset along it.
-/// `Equal` exactly when they are the same line.
-fn cmp_lines(l: &Line, m: &Line) -> Ordering {
-    let normal = |l: &Line| {
-        let [a, b, d] = l.exact();
-        if a.is_negative() || (a.is_zero() && b.is_negative()) {
-            [-a, -b, -d]
+/// A line's exact coefficients with its normal turned into the half-plane a > 0, or a = 0 and
+/// b > 0 (the same line), and the same rounded to f64 for the filter of [`cmp_lines`].
+struct Normalized {
+    exact: [I512; 3],
+    approx: [f64; 3],
+}
+
+fn normalized(l: &Line) -> Normalized {
+    let [a, b, d] = l.exact();
+    let exact = if a.is_negative() || (a.is_zero() && b.is_negative()) {
+        [-a, -b, -d]
+    } else {
+        [a, b, d]
+    };
+    Normalized {
+        exact,
+        approx: exact.map(|v| v.as_()),
+    }
+}
+
+/// An exact total order of screen lines as point sets, given [`normalized`]: by the direction
+/// of their normal, then by their offset along it. `Equal` exactly when they are the same line.
+///
+/// Each comparison is the sign of `p·q - r·s` for four coefficients; in f64 (each coefficient
+/// rounded once, relative error at most U, each product and the difference rounded once) it
+/// errs by less than `6·U·(|p·q| + |r·s|)`, so beyond twice that the f64 sign is exact.
+fn cmp_lines(l: &Normalized, m: &Normalized) -> Ordering {
+    let sign = |[p, q, r, t]: [usize; 4], [lp, lq]: [&Normalized; 2]| {
+        let (x, y) = (lp.approx[p] * lq.approx[q], lq.approx[r] * lp.approx[t]);
+        let bound = 12.0 * crate::exact::U * (x.abs() + y.abs());
+        if x - y > bound {
+            Ordering::Greater
+        } else if y - x > bound {
+            Ordering::Less
         } else {
-            [a, b, d]
+            (lp.exact[p] * lq.exact[q]).cmp(&(lq.exact[r] * lp.exact[t]))
         }
     };
-    let ([a0, b0, d0], [a1, b1, d1]) = (normal(l), normal(m));
-    // The second normal turned counter-clockwise from the first: the first comes first.
-    match (b0 * a1).cmp(&(a0 * b1)) {
+    // The second normal turned counter-clockwise from the first (b0·a1 < a0·b1): the first
+    // comes first.
+    match sign([1, 0, 1, 0], [l, m]) {
         Ordering::Equal => {}
         turn => return turn,
     }
-    // Parallel, normals in the same direction: compare d / |n| through the positive ratio.
-    if !a0.is_zero() {
-        (d0 * a1).cmp(&(d1 * a0))
+    // Parallel, normals in the same direction: compare d / |n| through the positive ratio
+    // (d0·a1 against d1·a0, or with b when a = 0).
+    if !l.exact[0].is_zero() {
+        sign([2, 0, 2, 0], [l, m])
     } else {
-        (d0 * b1).cmp(&(d1 * b0))
+        sign([2, 1, 2, 1], [l, m])
     }
 }
 
@@ -454,17 +485,9 @@ fn resolve(
 ) {
     let mut events: Vec<(Param, Change)> = Vec::new();
     let span = |(a, b): (At, At), open: Change, close: Change, events: &mut Vec<_>| {
-        let (pa, pb) = (carrier.param(&a), carrier.param(&b));
-        match pa.cmp(&pb) {
-            Ordering::Less => {
-                events.push((pa, open));
-                events.push((pb, close));
-            }
-            Ordering::Greater => {
-                events.push((pb, open));
-                events.push((pa, close));
-            }
-            Ordering::Equal => {}
+        if let Some([from, to]) = carrier.ordered(a, b) {
+            events.push((from, open));
+            events.push((to, close));
         }
     };
     span(window, Change::Window(1), Change::Window(-1), &mut events);
@@ -575,16 +598,14 @@ fn push(
     samples: &Samples,
     out: &mut Vec<Segment>,
 ) {
+    // In the track's own direction.
+    let Some(ordered) = carrier.ordered(at[0], at[1]) else {
+        return;
+    };
+    let at = ordered.map(|p| p.at());
     let ends = at.map(|a| carrier.pixel(&a, samples));
     // Two exact points a rounding apart draw as one point.
     if ends[0] != ends[1] {
-        // In the track's own direction.
-        let (p0, p1) = (carrier.param(&at[0]), carrier.param(&at[1]));
-        let (at, ends) = if p0 < p1 {
-            (at, ends)
-        } else {
-            ([at[1], at[0]], [ends[1], ends[0]])
-        };
         out.push(Segment {
             label,
             track: track as u32,
@@ -609,17 +630,11 @@ pub fn mark_occluded(pieces: &[Piece], tracks: &mut [Track]) {
         .iter()
         .map(crate::visibility::coverage::bounds)
         .collect();
-    let mut grid = BoxGrid::over(&boxes, boxes.len());
-    for (i, b) in boxes.iter().enumerate() {
-        grid.insert(i as u32, b);
-    }
+    let mut grid = BoxGrid::holding(&boxes);
     let mut near: Vec<u32> = Vec::new();
     for t in which {
         let track = &tracks[t];
-        near.clear();
-        grid.visit(&track_box(track), |_| true, |i| near.push(i));
-        near.sort_unstable();
-        near.dedup();
+        grid.entries_near(&track_box(track), &mut near);
         let mut occluded = Vec::new();
         let mut beside: [Vec<(At, At)>; 2] = [Vec::new(), Vec::new()];
         for &i in &near {
@@ -714,17 +729,11 @@ pub fn mark_faces_in_front(screen: &ScreenScene, tracks: &mut [Track]) {
         .iter()
         .map(|p| super::intersections::points_box(screen.corners(p)))
         .collect();
-    let mut grid = BoxGrid::over(&boxes, boxes.len());
-    for (i, b) in boxes.iter().enumerate() {
-        grid.insert(i as u32, b);
-    }
+    let mut grid = BoxGrid::holding(&boxes);
     let mut parts: Vec<Option<Vec<Vec<Line>>>> = vec![None; polys.len()];
     let mut near: Vec<u32> = Vec::new();
     for track in tracks.iter_mut() {
-        near.clear();
-        grid.visit(&track_box(track), |_| true, |i| near.push(i));
-        near.sort_unstable();
-        near.dedup();
+        grid.entries_near(&track_box(track), &mut near);
         let mut spans = Vec::new();
         for &i in &near {
             let poly = &polys[i as usize];

@@ -50,6 +50,24 @@ impl BoxGrid {
         )
     }
 
+    /// A grid over `boxes` with every box listed as its index.
+    pub fn holding(boxes: &[[f64; 4]]) -> BoxGrid {
+        let mut grid = BoxGrid::over(boxes, boxes.len());
+        for (i, b) in boxes.iter().enumerate() {
+            grid.insert(i as u32, b);
+        }
+        grid
+    }
+
+    /// The entries listed in the cells that `b` covers, each once, ascending, into `near`
+    /// (cleared first).
+    pub fn entries_near(&mut self, b: &[f64; 4], near: &mut Vec<u32>) {
+        near.clear();
+        self.visit(b, |_| true, |i| near.push(i));
+        near.sort_unstable();
+        near.dedup();
+    }
+
     /// Lists entry `index` in every cell its box `b` covers.
     pub fn insert(&mut self, index: u32, b: &[f64; 4]) {
         let (i0, i1, j0, j1) = self.range(b);
@@ -82,10 +100,7 @@ pub(crate) fn for_each_near(
     wanted: impl Fn(usize) -> bool,
     mut f: impl FnMut(usize, &[usize]),
 ) {
-    let mut grid = BoxGrid::over(boxes, boxes.len());
-    for (i, b) in boxes.iter().enumerate() {
-        grid.insert(i as u32, b);
-    }
+    let mut grid = BoxGrid::holding(boxes);
     let mut near: Vec<usize> = Vec::new();
     let mut seen = vec![usize::MAX; boxes.len()];
     for (a, ba) in boxes.iter().enumerate().filter(|&(a, _)| wanted(a)) {
