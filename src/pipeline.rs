@@ -93,12 +93,12 @@ pub fn colorize_painted(
 /// Do the screen bounding boxes of any two polygons overlap with positive area? (Newell's first
 /// two tests fail for some pair: depth order matters.) Sweep over x; stops at the first pair.
 pub fn screen_extents_overlap(screen: &ScreenScene) -> bool {
-    let mut boxes: Vec<[i32; 4]> = screen
+    let mut boxes: Vec<[i64; 4]> = screen
         .polys
         .iter()
         .map(|p| {
             let pts = screen.corners(p);
-            let mut b = [i32::MAX, i32::MAX, i32::MIN, i32::MIN];
+            let mut b = [i64::MAX, i64::MAX, i64::MIN, i64::MIN];
             for q in pts {
                 b = [b[0].min(q.x), b[1].min(q.y), b[2].max(q.x), b[3].max(q.y)];
             }
@@ -106,7 +106,7 @@ pub fn screen_extents_overlap(screen: &ScreenScene) -> bool {
         })
         .collect();
     boxes.sort_unstable();
-    let mut active: Vec<[i32; 4]> = Vec::new();
+    let mut active: Vec<[i64; 4]> = Vec::new();
     for b in boxes {
         active.retain(|a| a[2] > b[0]);
         if active.iter().any(|a| a[1] < b[3] && b[1] < a[3]) {

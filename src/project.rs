@@ -3,7 +3,10 @@
 //! Invariants of every [`ScreenPoly`] produced:
 //! - its corners lie on the integer grid of [`crate::exact`], inside the guard band and the depth
 //!   range, with no two consecutive corners at the same (x, y);
-//! - its projection has non-zero area and it has a support [`Plane`];
+//! - its projection has non-zero area and it has a support [`Plane`] through every one of its
+//!   corners: a face whose snapped corners do not lie in one plane (a quad after rounding,
+//!   almost always) is split into triangles, each a polygon of its own with the face's id, so
+//!   that two faces sharing an edge agree exactly on its depth;
 //! - it was not culled: it lies at least partly inside the view frustum and, if its mesh is
 //!   cullable, it faces the camera.
 //!
@@ -67,6 +70,8 @@ pub struct ProjectStats {
     pub backface_culled: usize,
     /// Faces whose snapped projection has no area (edge-on, or smaller than the grid).
     pub degenerate_after_snap: usize,
+    /// Faces whose snapped corners are not coplanar, split into triangles.
+    pub split_nonplanar: usize,
     /// Meshes whose back faces were culled.
     pub culled_meshes: usize,
     /// Closed meshes not culled because the near plane cuts them.
@@ -83,6 +88,9 @@ pub enum Side {
     Edge(u32),
     /// Where clipping cut the face.
     Clip(ClipPlane),
+    /// Inside the face: a diagonal where a face whose snapped corners are not coplanar was
+    /// split into triangles.
+    Diagonal,
 }
 
 /// The planes faces are clipped by (in homogeneous clip space, before the divide).
@@ -286,6 +294,52 @@ fn snap_clip(p: DVec4) -> GridPoint {
     GridPoint::snap(p.x / p.w, p.y / p.w, p.z / p.w)
 }
 
+/// Replaces `poly`, the last polygon of `points` and `sides`, by triangles of its snapped
+/// corners, each with the support plane through its own three corners. The triangles keep the
+/// polygon's orientation (`area`); a triangle side that is not a side of the polygon is a
+/// [`Side::Diagonal`].
+fn split_into_triangles(
+    poly: ScreenPoly,
+    area: std::cmp::Ordering,
+    points: &mut Vec<GridPoint>,
+    sides: &mut Vec<Side>,
+    polys: &mut Vec<ScreenPoly>,
+) {
+    let start = poly.start as usize;
+    let ring: Vec<GridPoint> = points.drain(start..).collect();
+    let ring_sides: Vec<Side> = sides.drain(start..).collect();
+    let n = ring.len();
+    // Triangulate counter-clockwise (reversing a clockwise ring), then map back.
+    let ccw = area.is_gt();
+    let at = |k: usize| if ccw { k } else { n - 1 - k };
+    let ordered: Vec<GridPoint> = (0..n).map(|k| ring[at(k)]).collect();
+    for t in crate::exact::polygon::ear_triangles(&ordered) {
+        let mut t = t.map(at);
+        if !ccw {
+            t.reverse();
+        }
+        let Some(plane) = Plane::through(ring[t[0]], ring[t[1]], ring[t[2]]) else {
+            continue;
+        };
+        let tri_start = points.len();
+        for j in 0..3 {
+            let (a, b) = (t[j], t[(j + 1) % 3]);
+            points.push(ring[a]);
+            sides.push(if b == (a + 1) % n {
+                ring_sides[a]
+            } else {
+                Side::Diagonal
+            });
+        }
+        polys.push(ScreenPoly {
+            start: tri_start as u32,
+            len: 3,
+            plane,
+            ..poly
+        });
+    }
+}
+
 /// Projects, clips, snaps and culls every face of `scene`.
 pub fn project(
     scene: &Scene,
@@ -407,14 +461,14 @@ pub fn project(
         let area = if poly_pts.len() >= 3 {
             twice_signed_area(poly_pts)
         } else {
-            0
+            std::cmp::Ordering::Equal
         };
-        orientation.push(match area.cmp(&0) {
+        orientation.push(match area {
             std::cmp::Ordering::Greater => Orientation::Ccw,
             std::cmp::Ordering::Less => Orientation::Cw,
             std::cmp::Ordering::Equal => Orientation::Flat,
         });
-        let plane = if area != 0 {
+        let plane = if area.is_ne() {
             Plane::of_polygon(poly_pts)
         } else {
             None
@@ -427,7 +481,7 @@ pub fn project(
             continue;
         };
         let inside_out = analysis.meshes[face.mesh as usize].inside_out();
-        let front = (area > 0) != inside_out;
+        let front = area.is_gt() != inside_out;
         let two_sided = scene.materials[face.material as usize].two_sided;
         if !front && !two_sided && mesh_may_cull(face.mesh as usize) {
             stats.backface_culled += 1;
@@ -435,14 +489,21 @@ pub fn project(
             sides.truncate(start);
             continue;
         }
-        polys.push(ScreenPoly {
+        let poly = ScreenPoly {
             face: fi as u32,
             id: face.id,
             start: start as u32,
             len: (points.len() - start) as u32,
             plane,
             front,
-        });
+        };
+        let planar = poly.len == 3 || points[start..].iter().all(|c| plane.sign_at(*c).is_eq());
+        if planar {
+            polys.push(poly);
+        } else {
+            stats.split_nonplanar += 1;
+            split_into_triangles(poly, area, &mut points, &mut sides, &mut polys);
+        }
     }
     stats.visible_polys = polys.len();
     ScreenScene {

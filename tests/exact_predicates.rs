@@ -21,18 +21,23 @@ fn q(v: i128) -> Q {
     Q::from_integer(BigInt::from(v))
 }
 
+/// A 256-bit kernel integer (a plane's offset), exactly.
+fn qw(v: sightline::exact::I256) -> Q {
+    Q::from_integer(v.to_string().parse().expect("an integer"))
+}
+
 fn sign(v: &Q) -> Ordering {
     v.cmp(&Q::zero())
 }
 
 fn coeffs(p: &Plane) -> [Q; 4] {
-    [q(p.a as i128), q(p.b as i128), q(p.c as i128), q(p.d)]
+    [q(p.a), q(p.b), q(p.c), qw(p.d)]
 }
 
 /// (a, b, d) of a line, exactly.
 fn line_coeffs(l: &Line) -> [Q; 3] {
     match l {
-        Line::Edge(p) => [q(p.a as i128), q(p.b as i128), q(p.d)],
+        Line::Edge(p) => [q(p.a), q(p.b), qw(p.d)],
         Line::Cut(p, r) => {
             let [pa, pb, pc, pd] = coeffs(p);
             let [ra, rb, rc, rd] = coeffs(r);
@@ -95,9 +100,9 @@ fn depth_reference(m: [&Line; 2], s: &Plane, t: &Plane) -> Option<Ordering> {
 
 fn gp(x: i64, y: i64, z: i64) -> GridPoint {
     GridPoint {
-        x: x.clamp(-GRID_MAX, GRID_MAX) as i32,
-        y: y.clamp(-GRID_MAX, GRID_MAX) as i32,
-        z: z.clamp(-GRID_MAX, GRID_MAX) as i32,
+        x: x.clamp(-GRID_MAX, GRID_MAX),
+        y: y.clamp(-GRID_MAX, GRID_MAX),
+        z: z.clamp(-GRID_MAX, GRID_MAX),
     }
 }
 
@@ -136,9 +141,9 @@ fn query_near(g: GridPoint) -> impl Strategy<Value = Plane> {
     (0..4usize, point(), point()).prop_filter_map("flat", move |(k, a, b)| {
         let h = match k {
             0 => g,
-            1 => gp(g.x as i64 + 1, g.y as i64, g.z as i64),
-            2 => gp(g.x as i64, g.y as i64 - 1, g.z as i64),
-            _ => gp(g.x as i64, g.y as i64, g.z as i64 + 1),
+            1 => gp(g.x + 1, g.y, g.z),
+            2 => gp(g.x, g.y - 1, g.z),
+            _ => gp(g.x, g.y, g.z + 1),
         };
         Plane::through(h, a, b).or_else(|| Plane::edge(h, a))
     })
@@ -290,29 +295,28 @@ proptest! {
 fn adversarial_inputs_reach_the_exact_path() {
     // Three planes through one grid point, queried by a plane through the same point: every
     // determinant is exactly zero, which no f64 filter can certify.
+    // Coordinates across the whole grid (|x|, |y|, |z| up to 2^53), so that the exact path
+    // works with the widest numbers the grid makes.
+    let u = 1i64 << 30;
     let g = GridPoint {
-        x: 12345,
-        y: -6789,
-        z: 424242,
+        x: 12345 * u + 7,
+        y: -6789 * u - 3,
+        z: 424242 * u + 1,
     };
-    let far = |x: i32, y: i32, z: i32| GridPoint { x, y, z };
-    let p0 = Plane::through(g, far(8_000_000, 1, 3), far(-2, 7_999_999, -5)).unwrap();
-    let p1 = Plane::edge(g, far(-8_000_000, 8_000_000, 0)).unwrap();
-    let p2 = Plane::edge(g, far(8_000_000, 7_000_000, 0)).unwrap();
-    let qp = Plane::through(
-        g,
-        far(1, -8_000_000, 77),
-        far(-8_388_608, 8_388_608, 8_388_608),
-    )
-    .unwrap();
+    let far = |x: i64, y: i64, z: i64| GridPoint { x, y, z };
+    let m = GRID_MAX;
+    let p0 = Plane::through(g, far(8_000_000 * u, 1, 3), far(-2, 7_999_999 * u, -5)).unwrap();
+    let p1 = Plane::edge(g, far(-8_000_000 * u, 8_000_000 * u, 0)).unwrap();
+    let p2 = Plane::edge(g, far(8_000_000 * u, 7_000_000 * u, 0)).unwrap();
+    let qp = Plane::through(g, far(1, -8_000_000 * u, 77), far(-m, m, m)).unwrap();
     let before = fallback_count();
     assert_eq!(meet_side([&p0, &p1, &p2], &qp), Some(Ordering::Equal));
     assert!(fallback_count() > before);
     // One grid unit off: the smallest non-zero value, decided the same way as the reference.
     let q1 = Plane::through(
         far(g.x + 1, g.y, g.z),
-        far(1, -8_000_000, 77),
-        far(-8_388_608, 8_388_608, 8_388_608),
+        far(1, -8_000_000 * u, 77),
+        far(-m, m, m),
     )
     .unwrap();
     assert_eq!(
@@ -382,7 +386,14 @@ fn piece_sign_shortcuts_agree_with_the_reference() {
 fn crossing_f64_of_nearly_parallel_lines_is_finite() {
     use sightline::exact::predicates::crossing_f64;
     let big = 1i64 << 60;
-    let edge = |a: i64, b: i64, d: i128| Line::Edge(Plane { a, b, c: 0, d });
+    let edge = |a: i64, b: i64, d: i128| {
+        Line::Edge(Plane {
+            a: a as i128,
+            b: b as i128,
+            c: 0,
+            d: sightline::exact::w256(d),
+        })
+    };
     // det = (2^60 + 1)(2^60 - 1) - 2^60·2^60 = -1, but both products round to 2^120 in f64.
     let l = edge(big + 1, big, 3);
     let m = edge(big, big - 1, 5);

@@ -91,8 +91,7 @@ fn crossing_tori() -> Scene {
     b.begin_mesh("a");
     primitives::torus(&mut b, &DMat4::IDENTITY, 1.0, 0.3, 40, 14, m);
     b.begin_mesh("b");
-    let turn = DMat4::from_translation(DVec3::new(0.5, 0.2, 0.0))
-        * DMat4::from_rotation_x(std::f64::consts::FRAC_PI_2);
+    let turn = DMat4::from_translation(DVec3::new(0.5, 0.2, 0.0)) * primitives::quarter_turn_x();
     primitives::torus(&mut b, &turn, 1.0, 0.3, 40, 14, m);
     b.finish().unwrap()
 }
@@ -196,19 +195,19 @@ fn two_crossing_tori_meet_in_closed_loops() {
     }
 }
 
-/// An exact rational of a 512-bit integer.
-fn big(v: bnum::types::I512) -> BigInt {
+/// An exact integer of a kernel integer (any width).
+fn big(v: impl std::fmt::Display) -> BigInt {
     v.to_string().parse().unwrap()
 }
 
-fn rat(v: i64) -> BigRational {
-    BigRational::from_integer(BigInt::from(v))
+fn rat(v: impl Into<BigInt>) -> BigRational {
+    BigRational::from_integer(v.into())
 }
 
 /// The exact screen point `at` on the line `carrier`.
 fn point(carrier: &Line, at: &At) -> [BigRational; 2] {
     match at {
-        At::Grid([x, y]) => [rat(*x as i64), rat(*y as i64)],
+        At::Grid([x, y]) => [rat(*x), rat(*y)],
         At::Cross(m) => {
             let [a0, b0, d0] = carrier.exact().map(big);
             let [a1, b1, d1] = m.exact().map(big);
@@ -223,14 +222,18 @@ fn point(carrier: &Line, at: &At) -> [BigRational; 2] {
 
 /// The depth of `plane` at screen point `p`.
 fn depth(plane: &sightline::exact::Plane, p: &[BigRational; 2]) -> BigRational {
-    let n = rat(plane.a) * &p[0] + rat(plane.b) * &p[1] + BigRational::from_integer(plane.d.into());
+    let n = rat(plane.a) * &p[0] + rat(plane.b) * &p[1] + rat(big(plane.d));
     -n / rat(plane.c)
 }
 
 /// How many faces of `screen` other than `own` cover point `p` strictly inside and strictly in
-/// front of depth `z`: the brute-force quantitative invisibility of a line point.
+/// front of depth `z`: the brute-force quantitative invisibility of a line point. A face is the
+/// union of its screen polygons (`project` splits a face whose snapped corners are not coplanar
+/// into triangles): `p` is strictly inside it when it lies in one of them, on no side that is
+/// part of the face's outline (a diagonal between two of them is inside the face).
 fn faces_in_front(screen: &ScreenScene, own: &[u32], p: &[BigRational; 2], z: &BigRational) -> u32 {
-    let mut n = 0;
+    use sightline::project::Side;
+    let mut depth_of_face: HashMap<u32, Option<BigRational>> = HashMap::new();
     for poly in &screen.polys {
         if own.contains(&poly.face) {
             continue;
@@ -239,8 +242,7 @@ fn faces_in_front(screen: &ScreenScene, own: &[u32], p: &[BigRational; 2], z: &B
         let k = c.len();
         let side = |i: usize| {
             let (a, b) = (&c[i], &c[(i + 1) % k]);
-            let v = rat((b.x - a.x) as i64) * (&p[1] - rat(a.y as i64))
-                - rat((b.y - a.y) as i64) * (&p[0] - rat(a.x as i64));
+            let v = rat(b.x - a.x) * (&p[1] - rat(a.y)) - rat(b.y - a.y) * (&p[0] - rat(a.x));
             if v.is_positive() {
                 1
             } else if v.is_negative() {
@@ -250,12 +252,23 @@ fn faces_in_front(screen: &ScreenScene, own: &[u32], p: &[BigRational; 2], z: &B
             }
         };
         let signs: Vec<i32> = (0..k).map(side).collect();
-        let inside = signs.iter().all(|&s| s == 1) || signs.iter().all(|&s| s == -1);
-        if inside && depth(&poly.plane, p) < *z {
-            n += 1;
+        let closed = signs.iter().all(|&s| s >= 0) || signs.iter().all(|&s| s <= 0);
+        if !closed {
+            continue;
+        }
+        let sides = screen.sides(poly);
+        let on_outline = (0..k).any(|i| signs[i] == 0 && sides[i] != Side::Diagonal);
+        let entry = depth_of_face
+            .entry(poly.face)
+            .or_insert(Some(depth(&poly.plane, p)));
+        if on_outline {
+            *entry = None;
         }
     }
-    n
+    depth_of_face
+        .values()
+        .filter(|d| d.as_ref().is_some_and(|d| d < z))
+        .count() as u32
 }
 
 /// Every drawn segment's visibility is the brute-force answer at exact interior points of it

@@ -157,7 +157,15 @@ pub fn draw(
         .into_iter()
         .map(|r| item(opaque[r.piece].poly, &r.faces, r.rings))
         .collect();
-    for run in visible.layered.chunk_by(|a, b| a.poly() == b.poly()) {
+    // Consecutive exact pieces of one face (a face may be several polygons: `project` splits
+    // a face that is not planar on the grid) are one item, their union; a painter's whole
+    // polygons are one item each (they may overlap).
+    let face_id = |f: &Fragment| screen.polys[f.poly() as usize].id;
+    let same_item = |a: &Fragment, b: &Fragment| match (a, b) {
+        (Fragment::Piece(_), Fragment::Piece(_)) => face_id(a) == face_id(b),
+        _ => a.poly() == b.poly(),
+    };
+    for run in visible.layered.chunk_by(same_item) {
         let poly = run[0].poly();
         let pieces: Vec<Piece> = run
             .iter()
@@ -212,7 +220,7 @@ fn seam_strokes(
     group: &dyn Fn(&Piece) -> u32,
     color: &dyn Fn(&Piece) -> [f64; 3],
 ) -> Vec<SeamStroke> {
-    let shared = seams::shared_edges(pieces, &vertices.pixels, |i| group(&pieces[i]));
+    let shared = seams::shared_edges(pieces, vertices, |i| group(&pieces[i]));
     let mut by_color: BTreeMap<[u8; 3], ([f64; 3], Vec<&seams::SharedEdge>)> = BTreeMap::new();
     for e in &shared {
         let [ca, cb] = e.pieces.map(|i| color(&pieces[i]));

@@ -32,13 +32,16 @@
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::Line;
+use crate::exact::predicates::Wide;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
 use crate::visibility::coverage::bounds;
 use crate::visibility::grid::for_each_near;
 use bnum::cast::As;
-use bnum::types::{I512, U512};
+
+/// The unsigned counterpart of [`Wide`].
+type WideUnsigned = bnum::Uint<96>;
 use glam::DVec3;
 use std::cmp::Ordering;
 use std::collections::BTreeMap;
@@ -243,12 +246,12 @@ pub(crate) fn exact_crossing(l: &Line, m: &Line) -> Option<[f64; 2]> {
 
 /// `n / d` correctly rounded to f64 (to nearest, ties to even); `d != 0`, and the quotient of
 /// crossing coordinates (far inside f64's normal range).
-fn ratio_f64(n: I512, d: I512) -> f64 {
+fn ratio_f64(n: Wide, d: Wide) -> f64 {
     if n.is_zero() {
         return 0.0;
     }
     let negative = n.is_negative() != d.is_negative();
-    let (n, d): (U512, U512) = (n.unsigned_abs(), d.unsigned_abs());
+    let (n, d): (WideUnsigned, WideUnsigned) = (n.unsigned_abs(), d.unsigned_abs());
     // Scale so that q = floor(n·2^s / d) has 55 or 56 bits: 53 kept, then a rounding bit and
     // more, and the remainder says whether anything lies below them.
     let s = 55 + d.bit_width() as i32 - n.bit_width() as i32;
@@ -715,7 +718,7 @@ pub(super) mod tests {
 
     /// A piece of polygon `poly` in the plane z = 0 with these grid corners (counter-clockwise,
     /// y up), each side an outline side.
-    pub(in crate::draw) fn grid_piece(poly: u32, corners: &[[i32; 2]]) -> Piece {
+    pub(in crate::draw) fn grid_piece(poly: u32, corners: &[[i64; 2]]) -> Piece {
         let gp: Vec<GridPoint> = corners
             .iter()
             .map(|&[x, y]| GridPoint { x, y, z: 0 })
@@ -724,7 +727,7 @@ pub(super) mod tests {
             a: 0,
             b: 0,
             c: 1,
-            d: 0,
+            d: crate::exact::w256(0),
         };
         Piece::from_convex(poly, support, &gp, |side| Boundary::Outline {
             poly,
@@ -732,14 +735,18 @@ pub(super) mod tests {
         })
     }
 
-    /// A 2^23-pixel-wide image: pixels are grid units up to an offset ([`to_grid`]).
+    /// A 2^53-pixel-wide image: pixels are grid units up to an offset ([`to_grid`]). (No
+    /// image is this wide; `Samples::new` would refuse it.)
     pub(in crate::draw) fn grid_samples() -> Samples {
-        Samples::new(1 << 23, 1 << 23)
+        Samples {
+            width: 1 << 53,
+            height: 1 << 53,
+        }
     }
 
-    /// Pixels of [`grid_samples`] back to grid units (exact for grid points).
+    /// Pixels of [`grid_samples`] back to grid units (exact for small grid coordinates).
     pub(in crate::draw) fn to_grid([c, r]: [f64; 2]) -> [f64; 2] {
-        [c - (1 << 22) as f64, (1 << 22) as f64 - r]
+        [c - (1u64 << 52) as f64, (1u64 << 52) as f64 - r]
     }
 
     /// Rings in grid units.
@@ -775,25 +782,25 @@ pub(super) mod tests {
         merged(pieces).into_iter().map(|m| m.1).collect()
     }
 
-    fn rect(poly: u32, [x0, y0, x1, y1]: [i32; 4]) -> Piece {
+    fn rect(poly: u32, [x0, y0, x1, y1]: [i64; 4]) -> Piece {
         grid_piece(poly, &[[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
     }
 
     /// Rings of grid points as the merge gives them in grid units.
-    fn ring_set(rings: &[&[[i32; 2]]]) -> Rings {
+    fn ring_set(rings: &[&[[i64; 2]]]) -> Rings {
         rings
             .iter()
-            .map(|r| r.iter().map(|p| p.map(f64::from)).collect())
+            .map(|r| r.iter().map(|p| p.map(|v| v as f64)).collect())
             .collect()
     }
 
     /// One region with these rings ([`ring_set`]).
-    fn region(rings: &[&[[i32; 2]]]) -> Vec<Rings> {
+    fn region(rings: &[&[[i64; 2]]]) -> Vec<Rings> {
         vec![ring_set(rings)]
     }
 
     /// Rectangles (x0, y0, x1, y1) of polygon 0.
-    fn rects(boxes: &[[i32; 4]]) -> Vec<Piece> {
+    fn rects(boxes: &[[i64; 4]]) -> Vec<Piece> {
         boxes.iter().map(|&b| rect(0, b)).collect()
     }
 
@@ -816,8 +823,8 @@ pub(super) mod tests {
     }
 
     /// `pieces` each cut by every line through two grid points in `cuts`.
-    fn cut(pieces: Vec<Piece>, cuts: &[[[i32; 2]; 2]]) -> Vec<Piece> {
-        let g = |[x, y]: [i32; 2]| GridPoint { x, y, z: 0 };
+    fn cut(pieces: Vec<Piece>, cuts: &[[[i64; 2]; 2]]) -> Vec<Piece> {
+        let g = |[x, y]: [i64; 2]| GridPoint { x, y, z: 0 };
         cuts.iter().fold(pieces, |pieces, &[a, b]| {
             let l = Line::Edge(Plane::edge(g(a), g(b)).unwrap());
             pieces
@@ -934,8 +941,8 @@ pub(super) mod tests {
     #[test]
     fn a_point_named_by_different_lines_rounds_to_the_same_bits() {
         // Three lines through (10/3, 10/3): y = x, x + 2y = 10 and 2x + y = 10.
-        let line = |a: [i32; 2], b: [i32; 2]| {
-            let g = |[x, y]: [i32; 2]| GridPoint { x, y, z: 0 };
+        let line = |a: [i64; 2], b: [i64; 2]| {
+            let g = |[x, y]: [i64; 2]| GridPoint { x, y, z: 0 };
             Line::Edge(Plane::edge(g(a), g(b)).unwrap())
         };
         let lines = [
@@ -980,7 +987,7 @@ pub(super) mod tests {
 
     #[test]
     fn ratios_are_correctly_rounded() {
-        let big = |v: i128| -> I512 { v.as_() };
+        let big = |v: i128| -> Wide { v.as_() };
         // Below 2^53 both are exact in f64, and IEEE division rounds correctly.
         let mut seed = 7u64;
         let mut next = || {

@@ -8,12 +8,11 @@
 //! lie on its two sides, and the union of the segments is the whole boundary that pieces of
 //! different groups share (touching at a single point is not sharing). T-junction parts are
 //! decided exactly from the pieces' implicit vertices; edges shared whole are paired by their
-//! rounded endpoints (correctly rounded, so one exact point always has the same bits), which
-//! could also pair two distinct exact points closer than the rounding (1e-10 px): a seam across
-//! such a sliver gap, invisible, and left for the next pass (pair by vertex id instead).
+//! endpoints' exact vertex ids (on the 54-bit grid, two distinct exact points can round to the
+//! same f64 pixel, so rounded bits do not name a point).
 //! Boundaries against nothing (the silhouette) or between pieces of one group are never returned.
 
-use super::regions::UnionFind;
+use super::regions::{UnionFind, Vertices};
 use crate::exact::polygon::Piece;
 use crate::visibility::coverage::bounds;
 use crate::visibility::grid::for_each_near;
@@ -35,11 +34,12 @@ pub struct SharedEdge {
 
 /// The boundary segments shared by pieces of different groups (`group(i)` of piece i), in
 /// piece order. `pieces` must have pairwise disjoint interiors (a visible set); `vertices` are
-/// their [`shared_vertices`]' pixels, so that one exact vertex has the same bits in every piece.
+/// their [`shared_vertices`]: exact vertex ids, and pixels with the same bits for one exact
+/// vertex in every piece.
 ///
 /// Two passes. Whole edges first: an edge of one piece whose ends are, the other way round,
-/// the ends of an edge of another is shared whole (the same exact vertices have the same
-/// rounding, so a hash of the rounded ends finds them; this is most of a mesh). Then the edges
+/// the ends of an edge of another is shared whole (a hash of the ends' vertex ids finds them;
+/// this is most of a mesh). Then the edges
 /// left, where T-junctions and occlusion boundaries are: an edge of another piece lies on the
 /// same line, decided exactly, and the part they share runs between the ends of each that lie
 /// in the other piece.
@@ -47,43 +47,36 @@ pub struct SharedEdge {
 /// [`shared_vertices`]: super::regions::shared_vertices
 pub fn shared_edges(
     pieces: &[Piece],
-    vertices: &[Vec<[f64; 2]>],
+    vertices: &Vertices,
     group: impl Fn(usize) -> u32,
 ) -> Vec<SharedEdge> {
-    let bits = |p: [f64; 2], q: [f64; 2]| {
-        [
-            p[0].to_bits(),
-            p[1].to_bits(),
-            q[0].to_bits(),
-            q[1].to_bits(),
-        ]
-    };
+    let (pixels, ids) = (&vertices.pixels, &vertices.ids);
     let ends = |a: usize, k: usize| {
-        let v = &vertices[a];
+        let v = &ids[a];
         (v[k], v[(k + 1) % v.len()])
     };
-    let mut edges: HashMap<[u64; 4], (usize, usize)> =
-        HashMap::with_capacity(vertices.iter().map(Vec::len).sum());
-    for (a, v) in vertices.iter().enumerate() {
+    let mut edges: HashMap<(u32, u32), (usize, usize)> =
+        HashMap::with_capacity(ids.iter().map(Vec::len).sum());
+    for (a, v) in ids.iter().enumerate() {
         for k in 0..v.len() {
-            let (p, q) = ends(a, k);
-            edges.insert(bits(p, q), (a, k));
+            edges.insert(ends(a, k), (a, k));
         }
     }
     // Per piece and edge: shared whole with another piece.
-    let mut whole: Vec<Vec<bool>> = vertices.iter().map(|v| vec![false; v.len()]).collect();
+    let mut whole: Vec<Vec<bool>> = ids.iter().map(|v| vec![false; v.len()]).collect();
     let mut out = Vec::new();
     for a in 0..pieces.len() {
-        for k in 0..vertices[a].len() {
+        let n = ids[a].len();
+        for k in 0..n {
             let (p, q) = ends(a, k);
-            if let Some(&(b, j)) = edges.get(&bits(q, p)) {
+            if let Some(&(b, j)) = edges.get(&(q, p)) {
                 whole[a][k] = true;
                 whole[b][j] = true;
                 if a < b && group(a) != group(b) {
                     out.push(SharedEdge {
                         pieces: [a, b],
-                        ends: [p, q],
-                        vertices: [(a, k), (a, (k + 1) % vertices[a].len())],
+                        ends: [pixels[a][k], pixels[a][(k + 1) % n]],
+                        vertices: [(a, k), (a, (k + 1) % n)],
                         line: (a, k),
                     });
                 }
@@ -102,7 +95,7 @@ pub fn shared_edges(
                 if let Some(ends) = shared_part(pa, k, pb, &whole[b]) {
                     out.push(SharedEdge {
                         pieces: [a, b],
-                        ends: ends.map(|(i, v)| vertices[i][v]),
+                        ends: ends.map(|(i, v)| pixels[i][v]),
                         vertices: ends,
                         line: (a, k),
                     });
@@ -116,11 +109,11 @@ pub fn shared_edges(
 }
 
 /// `edges` (of one stroke) with the segments that continue each other joined: two segments
-/// meeting at an exact vertex, the other end of one on the other's kernel line, are one
-/// segment. Pieces cut a boundary at points of their own (the BSP's screen splits, the
-/// coverage map's splits); joined, the segments are the maximal straight runs of the point set
-/// the edges cover, whatever the cut. `ids` are the pieces' vertex ids
-/// ([`super::regions::Vertices`]).
+/// meeting at an exact vertex, the other end of one exactly on the other's kernel line, are one
+/// run, drawn as the union of its segments along the line. Pieces cut a boundary at points of
+/// their own (the BSP's screen splits, the coverage map's splits); joined, the segments are
+/// the maximal straight runs of the point set the edges cover, whatever the cut. `ids` are the
+/// pieces' vertex ids ([`Vertices`]).
 pub fn straight_runs(
     edges: &[&SharedEdge],
     pieces: &[Piece],
@@ -151,25 +144,43 @@ pub fn straight_runs(
     order.sort_unstable();
     let mut out = Vec::with_capacity(edges.len());
     for run in order.chunk_by(|a, b| a.0 == b.0) {
-        if let [(_, s)] = run {
-            out.push(edges[*s].ends);
-            continue;
+        // A path of segments along one line, or segments overlapping on it (two strategies cut
+        // one boundary into different parts): their union, whatever the cut.
+        out.extend(union_along_line(run.iter().map(|&(_, s)| edges[s].ends)));
+    }
+    out
+}
+
+/// The union of collinear segments (pixels, each end rounded once from an exact vertex) as
+/// maximal segments, ordered along the line by their coordinate on its longer axis: an output
+/// canonicalization of overlapping runs, on the rounded ends (equal bits are one point).
+fn union_along_line(segments: impl Iterator<Item = [[f64; 2]; 2]>) -> Vec<[[f64; 2]; 2]> {
+    let mut segments: Vec<[[f64; 2]; 2]> = segments.collect();
+    let Some(&[p, q]) = segments.first() else {
+        return Vec::new();
+    };
+    let axis = usize::from((q[1] - p[1]).abs() > (q[0] - p[0]).abs());
+    let key = |v: &[f64; 2]| (v[axis], v[1 - axis]);
+    let before = |a: &[f64; 2], b: &[f64; 2]| key(a).partial_cmp(&key(b)) == Some(Ordering::Less);
+    for s in &mut segments {
+        if before(&s[1], &s[0]) {
+            s.swap(0, 1);
         }
-        // A path of segments along one line: its ends are the vertices met once.
-        let mut points: Vec<(u32, [f64; 2])> = run
-            .iter()
-            .flat_map(|&(_, s)| [0, 1].map(|k| (id(edges[s].vertices[k]), edges[s].ends[k])))
-            .collect();
-        points.sort_by_key(|p| p.0);
-        let once: Vec<[f64; 2]> = points
-            .chunk_by(|a, b| a.0 == b.0)
-            .filter(|c| c.len() == 1)
-            .map(|c| c[0].1)
-            .collect();
-        match once[..] {
-            [p, q] => out.push([p, q]),
-            // Not a path (only overlapping input): its segments as they are.
-            _ => out.extend(run.iter().map(|&(_, s)| edges[s].ends)),
+    }
+    segments.sort_by(|a, b| {
+        key(&a[0])
+            .partial_cmp(&key(&b[0]))
+            .unwrap_or(Ordering::Equal)
+    });
+    let mut out: Vec<[[f64; 2]; 2]> = Vec::new();
+    for s in segments {
+        match out.last_mut() {
+            Some(last) if !before(&last[1], &s[0]) => {
+                if before(&last[1], &s[1]) {
+                    last[1] = s[1];
+                }
+            }
+            _ => out.push(s),
         }
     }
     out
@@ -224,12 +235,25 @@ fn shared_part(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn overlapping_collinear_seams_are_drawn_as_their_union() {
+        let seg = |a: f64, b: f64| [[a, 2.0 * a], [b, 2.0 * b]];
+        // The same boundary cut two ways, with a repeated part: one segment.
+        let got = union_along_line(
+            [seg(0.0, 1.0), seg(3.0, 1.0), seg(1.0, 3.0), seg(2.0, 4.0)].into_iter(),
+        );
+        assert_eq!(got, vec![seg(0.0, 4.0)]);
+        // Apart: two segments, in order along the line.
+        let got = union_along_line([seg(5.0, 6.0), seg(0.0, 1.0)].into_iter());
+        assert_eq!(got, vec![seg(0.0, 1.0), seg(5.0, 6.0)]);
+    }
     use crate::draw::regions::shared_vertices;
     use crate::draw::regions::tests::{grid_piece as piece, grid_samples, to_grid};
 
     /// The shared segments as (pieces, ends in grid units, ends sorted).
     fn shared(pieces: &[Piece], group: impl Fn(usize) -> u32) -> Vec<([usize; 2], [[f64; 2]; 2])> {
-        let vertices = shared_vertices(pieces, &grid_samples()).pixels;
+        let vertices = shared_vertices(pieces, &grid_samples());
         let mut out: Vec<_> = shared_edges(pieces, &vertices, group)
             .into_iter()
             .map(|e| {
@@ -294,7 +318,7 @@ mod tests {
     /// The stroke segments of `pieces` (one colour), grid units, each from its smaller end.
     fn runs(pieces: &[Piece], group: impl Fn(usize) -> u32) -> Vec<[[f64; 2]; 2]> {
         let vertices = shared_vertices(pieces, &grid_samples());
-        let edges = shared_edges(pieces, &vertices.pixels, group);
+        let edges = shared_edges(pieces, &vertices, group);
         let edges: Vec<&SharedEdge> = edges.iter().collect();
         let mut out: Vec<[[f64; 2]; 2]> = straight_runs(&edges, pieces, &vertices.ids)
             .into_iter()

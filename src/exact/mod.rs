@@ -3,17 +3,21 @@
 //! # Representation
 //!
 //! After clipping (in f64 homogeneous coordinates) every polygon is projected to NDC and its
-//! corners are snapped to a signed integer grid:
+//! corners are rounded once onto a signed integer grid:
 //!
-//! - `x`, `y`: `round(ndc · 2^22)`. Polygons are clipped to a guard band `|x|, |y| <= 2·w`, so
-//!   `|x|, |y| <= 2^23`; the visible view `[-1,1]` is 2^23 = 8.4 million units across, over 500
-//!   units per pixel even at the largest image side, 16384. `y` grows upward here, as in NDC;
-//!   outputs flip it.
-//! - `z`: `round(ndc_z · 2^23)`, `|z| <= 2^23`, smaller is nearer.
+//! - `x`, `y`: `round(ndc · 2^52)`. Polygons are clipped to a guard band `|x|, |y| <= 2·w`, so
+//!   `|x|, |y| <= 2^53`; the visible view `[-1, 1]` is 2^53 units across. `y` grows upward here,
+//!   as in NDC; outputs flip it.
+//! - `z`: `round(ndc_z · 2^53)`, `|z| <= 2^53`, smaller is nearer.
 //!
-//! That is B = 24-bit signed input. **Snapping bound**: each coordinate moves by at most half a
-//! unit: 2^-23 in NDC x and y (1/16 of a micro-pixel at 1024 px: far below any plot resolution),
-//! and 2^-24 in NDC z. This is the one approximation on the way in; everything after it is exact.
+//! **Why this grid.** Every grid coordinate is an integer of at most 54 bits, so it is exactly
+//! an f64, and f64 filters read the input without rounding it again. The rounding onto the grid
+//! is at most 2^-53 NDC in x and y and 2^-54 in z: the size of the projection's own f64
+//! rounding (the divide by w rounds to half an ulp of the NDC value, 2^-53 for values in
+//! [1, 2) and 2^-54 in [0.5, 1), where perspective depths lie; the matrix product before it
+//! rounds by a few ulps of its terms). Every NDC z in [0.5, 1] and every NDC x, y in [1, 2] is
+//! on the grid exactly. Surfaces closer in depth than the projection can tell apart are the
+//! camera's f64 limit, not the kernel's; everything after this one rounding is exact.
 //!
 //! A face is its snapped 2D polygon plus one support plane through three of its snapped corners
 //! ([`Plane`]): the depth of the face at any (x, y) is the plane's, so a face is exactly planar
@@ -22,35 +26,42 @@
 //!
 //! # Bit budget
 //!
-//! Coordinate differences are below 2^25 (guard band), so a plane normal component is below
-//! 2·2^25·2^25 = 2^51 (i64) and its offset below 3·2^51·2^23 < 2^76 (i128). A pixel-sample
-//! coordinate, scaled to an integer by the image side (at most 2^14), is below 2^38.
-//! - edge-versus-sample tests are below 2^80: i128;
-//! - depth of a plane at a sample (numerator) is below 2^104: i128;
-//! - comparing two such depths cross-multiplies by the other plane's z-normal: below 2^156, done in
-//!   256-bit integers (`bnum::types::I256`).
+//! Coordinates are below 2^53 and their differences below 2^54, so:
+//! - a plane normal component is below 2·2^54·2^54 = 2^109 (i128) and its offset below
+//!   3·2^109·2^53 < 2^165 (`I256`); an edge line (a vertical plane) has `a`, `b` below 2^54 and
+//!   `d` below 2^108;
+//! - the predicates on lines and implicit points ([`predicates`]) take determinants of degree up
+//!   to 13 in the coordinates, below 2^716: their exact path computes in 768-bit integers;
+//! - a pixel-sample coordinate, scaled to an integer by the image side (at most 2^14), is below
+//!   2^67 (i128); edge-versus-sample tests are below 2^123 before the last scaling and are done
+//!   in `I256`; the depth of a plane at a sample (numerator) is below 2^193 and comparing two
+//!   such depths cross-multiplies by the other plane's z-normal: below 2^303, in `I512`.
 //!
 //! # Filters
 //!
 //! Hot predicates are evaluated in f64 with an error bound proven in their docs; only when the
 //! bound cannot decide do they fall back to the integer computation. Every fallback is counted
-//! in [`Fallbacks`].
+//! in [`Fallbacks`] or [`predicates::fallback_count`]. The bounds are relative to the magnitudes
+//! of the terms, so they do not depend on the scale of the integers.
 
 pub mod polygon;
 pub mod predicates;
 
 use bnum::cast::As;
-use bnum::types::I256;
+pub use bnum::types::I256;
+use bnum::types::I512;
 use std::cell::Cell;
 
+/// log2 of [`XY_SCALE`].
+pub const XY_BITS: u32 = 52;
 /// Grid units per NDC unit in x and y.
-pub const XY_SCALE: f64 = 4_194_304.0; // 2^22
+pub const XY_SCALE: f64 = (1u64 << XY_BITS) as f64;
 /// Grid units per NDC unit in z.
-pub const Z_SCALE: f64 = 8_388_608.0; // 2^23
+pub const Z_SCALE: f64 = (1u64 << 53) as f64;
 /// Polygons are clipped to |x|, |y| <= GUARD · w in clip space.
 pub const GUARD: f64 = 2.0;
 /// Largest |coordinate| on the grid.
-pub const GRID_MAX: i64 = 1 << 23;
+pub const GRID_MAX: i64 = 1 << 53;
 
 /// f64 unit roundoff.
 pub const U: f64 = f64::EPSILON / 2.0;
@@ -58,12 +69,12 @@ pub const U: f64 = f64::EPSILON / 2.0;
 /// A snapped corner.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct GridPoint {
-    /// `round(ndc_x · 2^22)`.
-    pub x: i32,
-    /// `round(ndc_y · 2^22)`, growing upward.
-    pub y: i32,
-    /// `round(ndc_z · 2^23)`, smaller is nearer.
-    pub z: i32,
+    /// `round(ndc_x · 2^52)`.
+    pub x: i64,
+    /// `round(ndc_y · 2^52)`, growing upward.
+    pub y: i64,
+    /// `round(ndc_z · 2^53)`, smaller is nearer.
+    pub z: i64,
 }
 
 impl GridPoint {
@@ -72,7 +83,7 @@ impl GridPoint {
     pub fn snap(ndc_x: f64, ndc_y: f64, ndc_z: f64) -> GridPoint {
         let c = |v: f64, s: f64| {
             let g = (v * s).round();
-            g.clamp(-(GRID_MAX as f64), GRID_MAX as f64) as i32
+            g.clamp(-(GRID_MAX as f64), GRID_MAX as f64) as i64
         };
         GridPoint {
             x: c(ndc_x, XY_SCALE),
@@ -82,39 +93,72 @@ impl GridPoint {
     }
 }
 
-/// Twice the signed area of a grid polygon's (x, y) projection, exactly. Positive when the polygon
-/// runs counter-clockwise with y up: for a front face (OpenGL's GL_CCW).
-pub fn twice_signed_area(points: &[GridPoint]) -> i128 {
-    let n = points.len();
+/// The sign of the signed area of a grid polygon's (x, y) projection, exactly. `Greater` when the
+/// polygon runs counter-clockwise with y up: for a front face (OpenGL's GL_CCW).
+///
+/// Each term is a cross product of differences from the first corner (below 2^109); the sum
+/// is kept in i128 while it fits and finished in 256 bits otherwise. Only its sign is returned:
+/// `Greater` for counter-clockwise, `Equal` for no area.
+pub fn twice_signed_area(points: &[GridPoint]) -> std::cmp::Ordering {
+    let Some(&o) = points.first() else {
+        return std::cmp::Ordering::Equal;
+    };
+    let term = |a: GridPoint, b: GridPoint| {
+        let (ax, ay) = ((a.x - o.x) as i128, (a.y - o.y) as i128);
+        let (bx, by) = ((b.x - o.x) as i128, (b.y - o.y) as i128);
+        ax * by - bx * ay
+    };
     let mut s: i128 = 0;
-    for i in 0..n {
-        let a = points[i];
-        let b = points[(i + 1) % n];
-        s += a.x as i128 * b.y as i128 - b.x as i128 * a.y as i128;
+    for (k, w) in points.windows(2).enumerate().skip(1) {
+        match s.checked_add(term(w[0], w[1])) {
+            Some(v) => s = v,
+            None => {
+                let mut wide: I256 = s.as_();
+                for w in points[k..].windows(2) {
+                    wide += term(w[0], w[1]).as_::<I256>();
+                }
+                return wide.cmp(&w256(0));
+            }
+        }
     }
-    s
+    s.cmp(&0)
 }
 
 /// A plane `a·x + b·y + c·z + d = 0` of the grid, built from grid points only: a support plane
 /// (`c > 0`, through three snapped corners) or an edge plane (`c == 0`, vertical, through two).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Normal components are below 2^109 and the offset below 2^165 (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Plane {
     /// Coefficient of x.
-    pub a: i64,
+    pub a: i128,
     /// Coefficient of y.
-    pub b: i64,
+    pub b: i128,
     /// Coefficient of z: positive for a support plane, 0 for an edge plane.
-    pub c: i64,
+    pub c: i128,
     /// The constant term.
-    pub d: i128,
+    pub d: I256,
+}
+
+/// An i128 widened to 256 bits.
+#[inline]
+pub fn w256(v: i128) -> I256 {
+    v.as_()
 }
 
 impl Plane {
     /// The plane through three points, or `None` when their (x, y) projections are collinear
     /// (the plane would be parallel to the view direction).
     pub fn through(p: GridPoint, q: GridPoint, r: GridPoint) -> Option<Plane> {
-        let (ux, uy, uz) = ((q.x - p.x) as i64, (q.y - p.y) as i64, (q.z - p.z) as i64);
-        let (vx, vy, vz) = ((r.x - p.x) as i64, (r.y - p.y) as i64, (r.z - p.z) as i64);
+        let (ux, uy, uz) = (
+            (q.x - p.x) as i128,
+            (q.y - p.y) as i128,
+            (q.z - p.z) as i128,
+        );
+        let (vx, vy, vz) = (
+            (r.x - p.x) as i128,
+            (r.y - p.y) as i128,
+            (r.z - p.z) as i128,
+        );
         let mut a = uy * vz - uz * vy;
         let mut b = uz * vx - ux * vz;
         let mut c = ux * vy - uy * vx;
@@ -124,7 +168,9 @@ impl Plane {
         if c < 0 {
             (a, b, c) = (-a, -b, -c);
         }
-        let d = -(a as i128 * p.x as i128 + b as i128 * p.y as i128 + c as i128 * p.z as i128);
+        let d = -(w256(a) * w256(p.x as i128)
+            + w256(b) * w256(p.y as i128)
+            + w256(c) * w256(p.z as i128));
         Some(Plane { a, b, c, d })
     }
 
@@ -132,22 +178,50 @@ impl Plane {
     /// (inside a counter-clockwise polygon, y up): its value at r is `orient2d(p, q, r)`.
     /// `None` when `p` and `q` have the same (x, y).
     pub fn edge(p: GridPoint, q: GridPoint) -> Option<Plane> {
-        let a = p.y as i64 - q.y as i64;
-        let b = q.x as i64 - p.x as i64;
+        let a = (p.y - q.y) as i128;
+        let b = (q.x - p.x) as i128;
         if a == 0 && b == 0 {
             return None;
         }
-        let d = -(a as i128 * p.x as i128 + b as i128 * p.y as i128);
-        Some(Plane { a, b, c: 0, d })
+        // |a|, |b| <= 2^54 and |x|, |y| <= 2^53: the offset fits in i128.
+        let d = -(a * p.x as i128 + b * p.y as i128);
+        Some(Plane {
+            a,
+            b,
+            c: 0,
+            d: w256(d),
+        })
     }
 
     /// The plane's equation at a grid point, exactly.
     #[inline]
-    pub fn value_at(&self, p: GridPoint) -> i128 {
-        self.a as i128 * p.x as i128
-            + self.b as i128 * p.y as i128
-            + self.c as i128 * p.z as i128
+    pub fn value_at(&self, p: GridPoint) -> I256 {
+        w256(self.a) * w256(p.x as i128)
+            + w256(self.b) * w256(p.y as i128)
+            + w256(self.c) * w256(p.z as i128)
             + self.d
+    }
+
+    /// The sign of the plane's equation at a grid point, exactly: in f64 when its error bound
+    /// decides (each coefficient rounded once, each product and sum once more: below
+    /// `6·U` times the sum of the terms' magnitudes), otherwise in 256-bit integers.
+    #[inline]
+    pub fn sign_at(&self, p: GridPoint) -> std::cmp::Ordering {
+        let terms = [
+            self.a as f64 * p.x as f64,
+            self.b as f64 * p.y as f64,
+            self.c as f64 * p.z as f64,
+            self.d.as_::<f64>(),
+        ];
+        let v = terms[0] + terms[1] + terms[2] + terms[3];
+        let bound = 6.0 * U * terms.iter().map(|t| t.abs()).sum::<f64>() * 1.01;
+        if v > bound {
+            std::cmp::Ordering::Greater
+        } else if v < -bound {
+            std::cmp::Ordering::Less
+        } else {
+            self.value_at(p).cmp(&w256(0))
+        }
     }
 
     /// The same plane with its sides swapped.
@@ -168,14 +242,15 @@ impl Plane {
             return Plane::through(points[0], points[1], points[2]);
         }
         let p = points[0];
+        // Squares of differences below 2^54 stay below 2^109: i128.
         let d2 = |q: &GridPoint| {
-            let dx = (q.x - p.x) as i64;
-            let dy = (q.y - p.y) as i64;
+            let dx = (q.x - p.x) as i128;
+            let dy = (q.y - p.y) as i128;
             dx * dx + dy * dy
         };
         let q = *points.iter().max_by_key(|q| d2(q))?;
         let cross = |r: &GridPoint| {
-            ((q.x - p.x) as i64 * (r.y - p.y) as i64 - (q.y - p.y) as i64 * (r.x - p.x) as i64)
+            ((q.x - p.x) as i128 * (r.y - p.y) as i128 - (q.y - p.y) as i128 * (r.x - p.x) as i128)
                 .abs()
         };
         let r = *points.iter().max_by_key(|r| cross(r))?;
@@ -185,7 +260,7 @@ impl Plane {
 
 /// The pixel-sample lattice of a `width x height` image on the grid. Sample (i, j) is the centre
 /// of pixel column i, row j (row 0 at the top), at grid
-/// `x = (2i + 1 - W)·2^22 / W`, `y = (H - 2j - 1)·2^22 / H`.
+/// `x = (2i + 1 - W)·2^52 / W`, `y = (H - 2j - 1)·2^52 / H`.
 #[derive(Clone, Copy, Debug)]
 pub struct Samples {
     /// Image width W in pixels.
@@ -207,16 +282,17 @@ impl Samples {
         }
     }
 
-    /// Numerator of sample column i's x (denominator W).
+    /// Numerator of sample column i's x (denominator W): below 2^67 for columns within a few
+    /// image widths of the view.
     #[inline]
-    pub fn x_num(&self, i: i64) -> i64 {
-        (2 * i + 1 - self.width) << 22
+    pub fn x_num(&self, i: i64) -> i128 {
+        ((2 * i + 1 - self.width) as i128) << XY_BITS
     }
 
     /// Numerator of sample row j's y (denominator H).
     #[inline]
-    pub fn y_num(&self, j: i64) -> i64 {
-        (self.height - 2 * j - 1) << 22
+    pub fn y_num(&self, j: i64) -> i128 {
+        ((self.height - 2 * j - 1) as i128) << XY_BITS
     }
 
     /// Sample x in grid units (f64).
@@ -246,11 +322,11 @@ impl Samples {
     /// The first column whose sample lies at or to the right of the point where edge `p→q`
     /// crosses sample row j. The edge must cross the row (`p.y <= y_j < q.y` or the reverse).
     ///
-    /// Filter: the crossing's column coordinate is computed in f64 from exact integer inputs with
-    /// at most 8 roundings on quantities bounded by 2^26 grid units, so its error is below
-    /// 2^-22 · W · 2^-52 · 16 < 1e-9 columns for W <= 2^14. When the crossing is farther than 1e-9
-    /// from a sample column the rounded-up column is right; otherwise the exact i128 computation
-    /// decides.
+    /// Filter: the crossing's column coordinate is computed in f64 from integer inputs (each
+    /// exact or rounded once) with at most 10 roundings on quantities bounded by 2^56 grid
+    /// units, so its error is below 10 · U · 2^56 grid units, or 10 · U · 2^56 · W / 2^53 =
+    /// 80 · U · W < 1e-10 columns for W <= 2^14. When the crossing is farther than 1e-9 from a
+    /// sample column the rounded-up column is right; otherwise the exact computation decides.
     #[inline]
     pub fn first_column_at_or_right(
         &self,
@@ -273,31 +349,38 @@ impl Samples {
 
     /// Exact version of [`Self::first_column_at_or_right`] (`p.y < q.y`).
     pub fn first_column_exact(&self, p: GridPoint, q: GridPoint, j: i64) -> i64 {
-        let (w, h) = (self.width as i128, self.height as i128);
-        let dy = (q.y - p.y) as i128;
-        let dx = (q.x - p.x) as i128;
-        // Crossing x = p.x + (ys - p.y)·dx/dy with ys = y_num/H. Scaled by W/2^22 it is N / D:
-        let n = (p.x as i128 * dy * h + (self.y_num(j) as i128 - p.y as i128 * h) * dx) * w;
-        let d = (dy * h) << 22;
+        let (w, h) = (w256(self.width as i128), w256(self.height as i128));
+        let dy = w256((q.y - p.y) as i128);
+        let dx = w256((q.x - p.x) as i128);
+        let (px, py) = (w256(p.x as i128), w256(p.y as i128));
+        // Crossing x = p.x + (ys - p.y)·dx/dy with ys = y_num/H. Scaled by W/2^52 it is N / D
+        // (|N| < 2^138, D < 2^121):
+        let n = (px * dy * h + (w256(self.y_num(j)) - py * h) * dx) * w;
+        let d = (dy * h) << XY_BITS;
         // Sample i is at or right of the crossing iff (2i + 1 - W)·D >= N.
         let t = div_ceil(n, d);
-        div_ceil(t + w - 1, 2) as i64
+        div_ceil(t + w - w256(1), w256(2)).as_::<i64>()
     }
 }
 
-fn div_ceil(n: i128, d: i128) -> i128 {
-    debug_assert!(d > 0);
+fn div_ceil(n: I256, d: I256) -> I256 {
+    debug_assert!(d > w256(0));
     let q = n.div_euclid(d);
-    if n.rem_euclid(d) == 0 { q } else { q + 1 }
+    if n.rem_euclid(d) == w256(0) {
+        q
+    } else {
+        q + w256(1)
+    }
 }
 
 /// Depth of a plane across the sample lattice in f64, with its certified error bound.
 ///
-/// `z(i, j) = zi·i + zj·j + z0` (grid units). Each coefficient comes from exact integers through
-/// at most 7 roundings, each relative to the magnitude of the terms it combines; the evaluation
-/// adds 4 more. The terms of `z0` are bounded by `|zi|·W/2 + |zj|·H/2 + 2^23` (the plane passes
-/// through a corner with |x|, |y|, |z| <= 2^23), so
-/// `|z_f64 - z| <= 12·U·(|zi|·W + |zj|·H + |z0| + 2^24)`; `err` takes 16·U for margin.
+/// `z(i, j) = zi·i + zj·j + z0` (grid units). Each coefficient comes from the plane's integers
+/// (each rounded once to f64) through at most 8 more roundings, each relative to the magnitude
+/// of the terms it combines; the evaluation adds 4 more. The terms of `z0` are bounded by
+/// `|zi|·W/2 + |zj|·H/2 + 2^53` (the plane passes through a corner with |x|, |y|, |z| <=
+/// 2^53), so `|z_f64 - z| <= 14·U·(|zi|·W + |zj|·H + |z0| + 2^54)`; `err` takes 20·U for
+/// margin.
 #[derive(Clone, Copy, Debug)]
 pub struct DepthPlane {
     /// Depth change per sample column.
@@ -318,14 +401,14 @@ impl DepthPlane {
             plane.a as f64,
             plane.b as f64,
             plane.c as f64,
-            plane.d as f64,
+            plane.d.as_::<f64>(),
         );
-        // z = -(a·x + b·y + d)/c with x = (2i + 1 - W)·2^22/W, y = (H - 2j - 1)·2^22/H.
+        // z = -(a·x + b·y + d)/c with x = (2i + 1 - W)·2^52/W, y = (H - 2j - 1)·2^52/H.
         let zi = -a * (2.0 * XY_SCALE) / (w * c);
         let zj = b * (2.0 * XY_SCALE) / (h * c);
         let z0 = -(a * ((1.0 - w) * XY_SCALE / w) + b * ((h - 1.0) * XY_SCALE / h) + d) / c;
         let mag = zi.abs() * w + zj.abs() * h + z0.abs() + 2.0 * GRID_MAX as f64;
-        let err = 16.0 * U * mag;
+        let err = 20.0 * U * mag;
         DepthPlane { zi, zj, z0, err }
     }
 
@@ -336,6 +419,13 @@ impl DepthPlane {
     }
 }
 
+/// Numerator of a plane's depth at sample (i, j): `z = -N/(c·W·H)` with
+/// `N = a·xn·H + b·yn·W + d·W·H` (xn, yn the sample numerators), below 2^193.
+fn depth_numerator(pl: &Plane, s: &Samples, i: i64, j: i64) -> I256 {
+    let (w, h) = (w256(s.width as i128), w256(s.height as i128));
+    w256(pl.a) * w256(s.x_num(i)) * h + w256(pl.b) * w256(s.y_num(j)) * w + pl.d * w * h
+}
+
 /// Exact comparison of two planes' depths at sample (i, j): `Less` when `p` is nearer.
 pub fn compare_depth_exact(
     p: &Plane,
@@ -344,26 +434,18 @@ pub fn compare_depth_exact(
     i: i64,
     j: i64,
 ) -> std::cmp::Ordering {
-    // z = -N/(c·W·H) with N = a·xn·H + b·yn·W + d·W·H  (xn, yn the sample numerators).
-    let num = |pl: &Plane| -> i128 {
-        pl.a as i128 * s.x_num(i) as i128 * s.height as i128
-            + pl.b as i128 * s.y_num(j) as i128 * s.width as i128
-            + pl.d * s.width as i128 * s.height as i128
-    };
     // z_p < z_q  <=>  -N_p/c_p < -N_q/c_q  <=>  N_q·c_p < N_p·c_q   (c > 0)
-    let wide = |v: i128| -> I256 { v.as_() };
-    let lhs = wide(num(q)) * wide(p.c as i128);
-    let rhs = wide(num(p)) * wide(q.c as i128);
+    let wide = |v: I256| -> I512 { v.as_() };
+    let lhs = wide(depth_numerator(q, s, i, j)) * wide(w256(p.c));
+    let rhs = wide(depth_numerator(p, s, i, j)) * wide(w256(q.c));
     lhs.cmp(&rhs)
 }
 
-/// Exact depth of a plane at sample (i, j), as NDC z in f64 (rounded once, for output only).
+/// Exact depth of a plane at sample (i, j), as NDC z in f64 (rounded, for output only).
 pub fn depth_ndc(p: &Plane, s: &Samples, i: i64, j: i64) -> f64 {
-    let n = p.a as i128 * s.x_num(i) as i128 * s.height as i128
-        + p.b as i128 * s.y_num(j) as i128 * s.width as i128
-        + p.d * s.width as i128 * s.height as i128;
-    let den = p.c as i128 * s.width as i128 * s.height as i128;
-    -(n as f64 / den as f64) / Z_SCALE
+    let n = depth_numerator(p, s, i, j).as_::<f64>();
+    let den = p.c as f64 * s.width as f64 * s.height as f64;
+    -(n / den) / Z_SCALE
 }
 
 /// Counts of predicate evaluations the f64 filter could not decide.
@@ -379,7 +461,7 @@ pub struct Fallbacks {
 mod tests {
     use super::*;
 
-    fn gp(x: i32, y: i32, z: i32) -> GridPoint {
+    fn gp(x: i64, y: i64, z: i64) -> GridPoint {
         GridPoint { x, y, z }
     }
 
@@ -387,13 +469,14 @@ mod tests {
     fn first_column_reference(s: &Samples, p: GridPoint, q: GridPoint, j: i64) -> i64 {
         let (p, q) = if p.y <= q.y { (p, q) } else { (q, p) };
         // crossing x = (p.x·dy·H + (yn - p.y·H)·dx) / (dy·H)
-        let dy = (q.y - p.y) as i128;
-        let h = s.height as i128;
-        let cn =
-            p.x as i128 * dy * h + (s.y_num(j) as i128 - p.y as i128 * h) * (q.x - p.x) as i128;
+        let big = |v: i128| w256(v);
+        let dy = big((q.y - p.y) as i128);
+        let h = big(s.height as i128);
+        let cn = big(p.x as i128) * dy * h
+            + (big(s.y_num(j)) - big(p.y as i128) * h) * big((q.x - p.x) as i128);
         let cd = dy * h;
         (-2 * s.width - 2..3 * s.width + 2)
-            .find(|&i| s.x_num(i) as i128 * cd >= cn * s.width as i128)
+            .find(|&i| big(s.x_num(i)) * cd >= cn * big(s.width as i128))
             .unwrap()
     }
 
@@ -408,24 +491,22 @@ mod tests {
             seed ^= seed << 17;
             (seed % (2 * m as u64 + 1)) as i64 - m
         };
+        let m = GRID_MAX;
         for k in 0..20000 {
             // Half the edges have endpoints on sample columns and rows (exact ties).
             let (p, q) = if k % 2 == 0 {
-                let pick = |r: i64| ((2 * r + 1 - 16) << 22) / 16;
+                let pick = |r: i64| ((((2 * r + 1 - 16) as i128) << XY_BITS) / 16) as i64;
                 (
-                    gp(pick(rnd(8) + 8) as i32, rnd(1 << 22) as i32, 0),
-                    gp(pick(rnd(8) + 8) as i32, rnd(1 << 22) as i32, 0),
+                    gp(pick(rnd(8) + 8), rnd(m / 2), 0),
+                    gp(pick(rnd(8) + 8), rnd(m / 2), 0),
                 )
             } else {
-                (
-                    gp(rnd(1 << 23) as i32, rnd(1 << 23) as i32, 0),
-                    gp(rnd(1 << 23) as i32, rnd(1 << 23) as i32, 0),
-                )
+                (gp(rnd(m), rnd(m), 0), gp(rnd(m), rnd(m), 0))
             };
             if p.y == q.y {
                 continue;
             }
-            let (lo, hi) = (p.y.min(q.y) as i64, p.y.max(q.y) as i64);
+            let (lo, hi) = (p.y.min(q.y) as i128, p.y.max(q.y) as i128);
             for j in 0..12 {
                 let yn = s.y_num(j);
                 // lo <= y_j < hi  <=>  lo·H <= yn < hi·H
@@ -452,13 +533,11 @@ mod tests {
             seed = seed
                 .wrapping_mul(6364136223846793005)
                 .wrapping_add(1442695040888963407);
-            ((seed >> 11) % (2 * m as u64 + 1)) as i64 - m
+            (seed % (2 * m as u64 + 1)) as i64 - m
         };
-        let m = 1i64 << 23;
+        let m = GRID_MAX;
         for _ in 0..2000 {
-            let pts: Vec<GridPoint> = (0..6)
-                .map(|_| gp(rnd(m) as i32, rnd(m) as i32, rnd(m) as i32))
-                .collect();
+            let pts: Vec<GridPoint> = (0..6).map(|_| gp(rnd(m), rnd(m), rnd(m))).collect();
             let (Some(p), Some(q)) = (
                 Plane::through(pts[0], pts[1], pts[2]),
                 Plane::through(pts[3], pts[4], pts[5]),
@@ -484,7 +563,7 @@ mod tests {
     fn plane_depth_at_corners_is_the_corner_depth() {
         let s = Samples::new(4, 4);
         // A triangle whose corners are sample points of pixels (0,0), (3,0), (0,3).
-        let c = |i: i64, j: i64, z: i32| gp((s.x_num(i) / 4) as i32, (s.y_num(j) / 4) as i32, z);
+        let c = |i: i64, j: i64, z: i64| gp((s.x_num(i) / 4) as i64, (s.y_num(j) / 4) as i64, z);
         let p = Plane::through(c(0, 0, 100), c(3, 0, -5000), c(0, 3, 777)).unwrap();
         assert!((depth_ndc(&p, &s, 0, 0) * Z_SCALE - 100.0).abs() < 1e-6);
         assert!((depth_ndc(&p, &s, 3, 0) * Z_SCALE + 5000.0).abs() < 1e-6);

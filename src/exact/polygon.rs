@@ -78,12 +78,12 @@ pub struct Piece {
     pub boundaries: Vec<Boundary>,
     /// The grid (x, y) of vertex k when it is a grid point (an input corner, or two face edges
     /// crossing exactly at a mesh vertex): exact fast paths use it.
-    pub corners: Vec<Option<[i32; 2]>>,
+    pub corners: Vec<Option<[i64; 2]>>,
     /// For line k, the grid (x, y) of the face edge it runs along, when it is one (both ends lie
     /// on the support plane): a sign that agrees at both ends holds all along it.
-    pub segments: Vec<Option<[[i32; 2]; 2]>>,
+    pub segments: Vec<Option<[[i64; 2]; 2]>>,
     /// The grid bounds (x0, y0, x1, y1) of the face's polygon, exact: every part lies inside.
-    pub frame: [i32; 4],
+    pub frame: [i64; 4],
     /// Vertex k in f64 grid coordinates with a proven error bound, (x, y, e): the exact vertex
     /// is within e of (x, y) in each coordinate (e = 0 at grid corners, infinite where the
     /// crossing is too ill-conditioned to bound). Computed once when the vertex is made: sign
@@ -160,7 +160,7 @@ impl Piece {
             .collect();
         let frame = corners
             .iter()
-            .fold([i32::MAX, i32::MAX, i32::MIN, i32::MIN], |f, c| {
+            .fold([i64::MAX, i64::MAX, i64::MIN, i64::MIN], |f, c| {
                 [f[0].min(c.x), f[1].min(c.y), f[2].max(c.x), f[3].max(c.y)]
             });
         let points = corners
@@ -232,15 +232,14 @@ impl Piece {
     /// [`Self::vertex_plane_sign`] given `Cut(q, support)`'s f64 coefficients: on the support
     /// plane, q has the sign of that screen line (`c_S·q - c_q·S`, divided by `c_S > 0`).
     fn vertex_plane_sign_with(&self, k: usize, q: &Plane, qa: &LineApprox) -> Ordering {
-        if let Some([x, y]) = self.corners[k]
-            && let Some(s) = Line::Cut(*q, self.support).sign_at_grid(x, y)
-        {
-            return s;
-        }
+        // Most signs are far from zero: the cached point settles them in one dot product (at a
+        // grid corner exactly, its error bound being 0).
         if let Some(s) = qa.sign_at(self.points[k]) {
             return s;
         }
-        // Most signs are far from zero: the f64 filter settles them before any shortcut.
+        if let Some([x, y]) = self.corners[k] {
+            return Line::Cut(*q, self.support).sign_at_grid_exact(x, y);
+        }
         if let Some(s) = depth_order_filtered(self.vertex_lines(k), &self.support, q) {
             return s;
         }
@@ -262,9 +261,8 @@ impl Piece {
         {
             let [[px, py], [rx, ry]] = seg;
             let on_s = Line::Cut(*q, self.support);
-            if let (Some(a), Some(b)) = (on_s.sign_at_grid(px, py), on_s.sign_at_grid(rx, ry))
-                && a == b
-            {
+            let a = on_s.sign_at_grid(px, py);
+            if a == on_s.sign_at_grid(rx, ry) {
                 return a;
             }
         }
@@ -279,14 +277,13 @@ impl Piece {
 
     /// [`Self::vertex_line_sign`] with `l`'s f64 coefficients computed once by the caller.
     pub fn vertex_line_sign_with(&self, k: usize, l: &Line, la: &LineApprox) -> Ordering {
-        if let Some([x, y]) = self.corners[k]
-            && let Some(sign) = l.sign_at_grid(x, y)
-        {
-            return sign;
-        }
-        // The cached point and its error bound: one dot product settles most signs.
+        // The cached point and its error bound: one dot product settles most signs (at a grid
+        // corner exactly).
         if let Some(sign) = la.sign_at(self.points[k]) {
             return sign;
+        }
+        if let Some([x, y]) = self.corners[k] {
+            return l.sign_at_grid_exact(x, y);
         }
         // A vertex lies on the lines that define it: no arithmetic needed.
         let [a, b] = self.vertex_lines(k);
@@ -332,9 +329,8 @@ impl Piece {
             .into_iter()
             .flatten()
         {
-            if let (Some(s0), Some(s1)) = (l.sign_at_grid(x0, y0), l.sign_at_grid(x1, y1))
-                && s0 == s1
-            {
+            let s0 = l.sign_at_grid(x0, y0);
+            if s0 == l.sign_at_grid(x1, y1) {
                 return s0;
             }
         }
@@ -456,11 +452,14 @@ impl Piece {
         // a new (implicit) one otherwise.
         // A new vertex where two face edges cross may be a grid point (a mesh vertex): marking
         // it keeps the exact zeros of edges concurrent there out of the determinants.
-        let end_corner = |v: usize, kept: usize| {
+        let end_vertex = |v: usize, kept: usize| -> (Option<[i64; 2]>, [f64; 3]) {
             if signs[v] == Ordering::Equal {
-                self.corners[v]
-            } else {
-                grid_crossing(&closing, &self.lines[kept])
+                return (self.corners[v], self.points[v]);
+            }
+            let point = point_of(&closing, &self.lines[kept]);
+            match grid_crossing(&closing, &self.lines[kept], point) {
+                Some([x, y]) => (Some([x, y]), [x as f64, y as f64, 0.0]),
+                None => (None, point),
             }
         };
         let last = (run[run.len() - 1] + 1) % n;
@@ -470,23 +469,16 @@ impl Piece {
         let segments = kept_then(&run, &self.segments, None);
         // Vertex 0 joins the closing line and the first kept edge; vertex i joins kept edges
         // i-1 and i; the last joins the last kept edge and the closing line.
+        let (first_corner, first_point) = end_vertex(start, start);
+        let (last_corner, last_point) = end_vertex(last, run[run.len() - 1]);
         let mut corners = Vec::with_capacity(lines.len());
-        corners.push(end_corner(start, start));
+        corners.push(first_corner);
         corners.extend(run[1..].iter().map(|&k| self.corners[k]));
-        corners.push(end_corner(last, run[run.len() - 1]));
-        let end_point = |v: usize, corner: Option<[i32; 2]>, kept: usize| match corner {
-            _ if signs[v] == Ordering::Equal => self.points[v],
-            Some([x, y]) => [x as f64, y as f64, 0.0],
-            None => point_of(&closing, &self.lines[kept]),
-        };
+        corners.push(last_corner);
         let mut points = Vec::with_capacity(lines.len());
-        points.push(end_point(start, corners[0], start));
+        points.push(first_point);
         points.extend(run[1..].iter().map(|&k| self.points[k]));
-        points.push(end_point(
-            last,
-            corners[corners.len() - 1],
-            run[run.len() - 1],
-        ));
+        points.push(last_point);
         Piece {
             poly: self.poly,
             support: self.support,
@@ -566,23 +558,42 @@ fn point_of(l: &Line, m: &Line) -> [f64; 3] {
     }
 }
 
-/// Where two face-edge lines cross, when that is a grid point; exact in i128, every product
-/// checked (edge coefficients are grid differences and their cross products).
-fn grid_crossing(l: &Line, m: &Line) -> Option<[i32; 2]> {
+/// Where two face-edge lines cross, when that is a grid point, given the crossing in f64 with
+/// its error bound ([`point_of`]). When the bound is below one half, the only grid point the
+/// crossing can be is the rounded f64 point, and exact i128 signs check it; otherwise (an
+/// ill-conditioned crossing) Cramer's rule decides in 256-bit integers.
+fn grid_crossing(l: &Line, m: &Line, [x, y, e]: [f64; 3]) -> Option<[i64; 2]> {
+    use bnum::cast::As;
+    use bnum::types::I256;
     let (Line::Edge(p), Line::Edge(q)) = (l, m) else {
         return None;
     };
-    let (a0, b0, a1, b1) = (p.a as i128, p.b as i128, q.a as i128, q.b as i128);
-    let den = a0.checked_mul(b1)?.checked_sub(a1.checked_mul(b0)?)?;
-    if den == 0 {
+    let on_both = |x: i64, y: i64| {
+        l.sign_at_grid(x, y) == Ordering::Equal && m.sign_at_grid(x, y) == Ordering::Equal
+    };
+    let limit = super::GRID_MAX as f64;
+    if e < 0.5 {
+        let (x, y) = (x.round(), y.round());
+        if !(x.abs() <= limit && y.abs() <= limit) {
+            return None;
+        }
+        let (x, y) = (x as i64, y as i64);
+        return on_both(x, y).then_some([x, y]);
+    }
+    // Edge coefficients: a, b below 2^55, d below 2^108.
+    let w = |v: i128| -> I256 { v.as_() };
+    let den = w(p.a * q.b - q.a * p.b);
+    if den == w(0) {
         return None;
     }
-    let nx = b0.checked_mul(q.d)?.checked_sub(b1.checked_mul(p.d)?)?;
-    let ny = a1.checked_mul(p.d)?.checked_sub(a0.checked_mul(q.d)?)?;
-    if nx % den != 0 || ny % den != 0 {
+    let nx = w(p.b) * q.d - w(q.b) * p.d;
+    let ny = w(q.a) * p.d - w(p.a) * q.d;
+    if nx % den != w(0) || ny % den != w(0) {
         return None;
     }
-    Some([i32::try_from(nx / den).ok()?, i32::try_from(ny / den).ok()?])
+    let (x, y) = (nx / den, ny / den);
+    let fits = |v: I256| v.abs() <= w(super::GRID_MAX as i128);
+    (fits(x) && fits(y)).then(|| [x.as_(), y.as_()])
 }
 
 /// Do two convex pieces have disjoint interiors? Exact: some edge line of one has the other
@@ -604,12 +615,31 @@ pub fn negate(l: &Line) -> Line {
 }
 
 /// Are two support planes (c > 0) the same plane? Exact: their coefficients are proportional
-/// with a positive factor. Grid planes keep every product below 2^75 · 2^50 < 2^127.
+/// with a positive factor. The f64 cross products settle almost every pair that differs; the
+/// rest is compared in 512-bit integers (offsets below 2^165 times normals below 2^109).
 pub fn same_plane(s: &Plane, q: &Plane) -> bool {
-    let (sc, qc) = (s.c as i128, q.c as i128);
-    s.a as i128 * qc == q.a as i128 * sc
-        && s.b as i128 * qc == q.b as i128 * sc
-        && s.d * qc == q.d * sc
+    use bnum::cast::As;
+    use bnum::types::I512;
+    if s == q {
+        return true;
+    }
+    // Each product of two rounded coefficients errs by at most 3·U of its magnitude; a
+    // difference larger than that sum (doubled) is not zero.
+    let (sc, qc) = (s.c as f64, q.c as f64);
+    let differs = |sv: f64, qv: f64| {
+        let (l, r) = (sv * qc, qv * sc);
+        (l - r).abs() > 8.0 * super::U * (l.abs() + r.abs())
+    };
+    if differs(s.a as f64, q.a as f64)
+        || differs(s.b as f64, q.b as f64)
+        || differs(s.d.as_(), q.d.as_())
+    {
+        return false;
+    }
+    let w = |v: i128| -> I512 { v.as_() };
+    let wd = |v: bnum::types::I256| -> I512 { v.as_() };
+    let (sc, qc) = (w(s.c), w(q.c));
+    w(s.a) * qc == w(q.a) * sc && w(s.b) * qc == w(q.b) * sc && wd(s.d) * qc == wd(q.d) * sc
 }
 
 /// Cuts a simple grid polygon (counter-clockwise, y up, no repeated consecutive points) into
@@ -635,6 +665,37 @@ pub fn convex_piece_indices(points: &[GridPoint]) -> Vec<Vec<usize>> {
     if convex(points) {
         return vec![(0..n).collect()];
     }
+    let triangles = ear_triangles(points);
+    // Hertel–Mehlhorn: greedily merge pieces that share an edge while the result stays convex.
+    let mut pieces: Vec<Vec<usize>> = triangles.into_iter().map(|t| t.to_vec()).collect();
+    let mut merged = true;
+    while merged {
+        merged = false;
+        'outer: for i in 0..pieces.len() {
+            for j in i + 1..pieces.len() {
+                if let Some(u) = merge_along_shared_edge(&pieces[i], &pieces[j]) {
+                    let ring: Vec<GridPoint> = u.iter().map(|&v| points[v]).collect();
+                    if convex(&ring) && straight_only_along_the_outline(&u, &ring, n) {
+                        pieces[i] = u;
+                        pieces.swap_remove(j);
+                        merged = true;
+                        break 'outer;
+                    }
+                }
+            }
+        }
+    }
+    pieces
+}
+
+/// Triangles of a simple grid polygon (counter-clockwise, y up), as index triples in the
+/// polygon's orientation: ear clipping with exact orientation tests. Corners on the line
+/// through their neighbours (straight corners) are never ear tips, so no triangle has zero
+/// area; a self-touching polygon ends in a fan of what is left (its triangles may then overlap,
+/// never crash).
+pub fn ear_triangles(points: &[GridPoint]) -> Vec<[usize; 3]> {
+    use super::predicates::orient2d;
+    let n = points.len();
     // Ear clipping on indices.
     let mut idx: Vec<usize> = (0..n).collect();
     let mut triangles: Vec<[usize; 3]> = Vec::new();
@@ -677,29 +738,9 @@ pub fn convex_piece_indices(points: &[GridPoint]) -> Vec<Vec<usize>> {
             }
         }
     }
-    // Hertel–Mehlhorn: greedily merge pieces that share an edge while the result stays convex.
-    let mut pieces: Vec<Vec<usize>> = triangles.into_iter().map(|t| t.to_vec()).collect();
-    let mut merged = true;
-    while merged {
-        merged = false;
-        'outer: for i in 0..pieces.len() {
-            for j in i + 1..pieces.len() {
-                if let Some(u) = merge_along_shared_edge(&pieces[i], &pieces[j]) {
-                    let ring: Vec<GridPoint> = u.iter().map(|&v| points[v]).collect();
-                    if convex(&ring) && straight_only_along_the_outline(&u, &ring, n) {
-                        pieces[i] = u;
-                        pieces.swap_remove(j);
-                        merged = true;
-                        break 'outer;
-                    }
-                }
-            }
-        }
-    }
-    pieces
+    triangles
 }
 
-/// The union ring of two index rings sharing exactly one edge (a→b in one, b→a in the other).
 /// Does the piece `u` (indices into a polygon of `n` corners, at `ring`) have a straight corner
 /// only where two sides of the polygon's outline run on? A piece drops its straight corners, and
 /// its line then takes the boundary of the side before: a diagonal running on from an outline
@@ -715,6 +756,7 @@ fn straight_only_along_the_outline(u: &[usize], ring: &[GridPoint], n: usize) ->
     })
 }
 
+/// The union ring of two index rings sharing exactly one edge (a→b in one, b→a in the other).
 fn merge_along_shared_edge(p: &[usize], q: &[usize]) -> Option<Vec<usize>> {
     let (np, nq) = (p.len(), q.len());
     for i in 0..np {
@@ -741,7 +783,7 @@ fn merge_along_shared_edge(p: &[usize], q: &[usize]) -> Option<Vec<usize>> {
 mod tests {
     use super::*;
 
-    fn gp(x: i32, y: i32, z: i32) -> GridPoint {
+    fn gp(x: i64, y: i64, z: i64) -> GridPoint {
         GridPoint { x, y, z }
     }
 
@@ -865,10 +907,7 @@ mod tests {
         for _ in 0..200 {
             let mut pieces = vec![square()];
             for _ in 0..6 {
-                let (a, b) = (
-                    gp(rnd(150) as i32, rnd(150) as i32, 0),
-                    gp(rnd(150) as i32, rnd(150) as i32, 0),
-                );
+                let (a, b) = (gp(rnd(150), rnd(150), 0), gp(rnd(150), rnd(150), 0));
                 let Some(e) = Plane::edge(a, b) else { continue };
                 let l = Line::Edge(e);
                 let mut next = Vec::new();

@@ -7,26 +7,40 @@
 //! the defining coefficients.
 //!
 //! A [`Line`] is an input edge (a vertical plane through two grid points, coefficients below
-//! 2^26 and 2^50) or the screen projection of the meeting of two input planes,
-//! `c_Q·P - c_P·Q` (coefficients below 2^101 and 2^126). The largest determinant any predicate
-//! here takes is then below 2^331, so the exact path computes in 512-bit integers
-//! (`bnum::types::I512`): fixed width, no growth however often a polygon is split, because
-//! every line and plane is built from input planes only.
+//! 2^55 and 2^108) or the screen projection of the meeting of two input planes,
+//! `c_Q·P - c_P·Q` (a support plane's normal is below 2^109 and its offset below 2^165, so the
+//! cut's coefficients are below 2^219 and 2^275). The largest determinant any predicate here
+//! takes is of degree 13 in the grid coordinates:
+//! - the side of a line at the crossing of two cuts, `det3` of three cut rows: at most 6 terms
+//!   of 2^219 · 2^219 · 2^275, below 2^716;
+//! - the depth order of two support planes at the crossing of two cuts, `det4(S, m0, m1, T)`:
+//!   at most 24 terms, each a product of one entry per row in distinct columns, the largest
+//!   2^165 · 2^219 · 2^219 · 2^109 (or 2^109 · 2^219 · 2^275 · 2^109), below 2^717;
+//! - the meeting point of three support planes against a fourth, `det4` of plane rows, below
+//!   2^500.
+//!
+//! so the exact path computes in 768-bit integers ([`Wide`]): fixed width, no growth however
+//! often a polygon is split, because every line and plane is built from input planes only.
 //!
 //! **Filter.** Every predicate first evaluates its determinant in f64. Each entry is carried with
-//! a magnitude `M >= |entry|` and an error below `3·U·M` (the entry is an input coefficient rounded
-//! once, or one subtraction of two rounded products). A Laplace expansion of an n x n determinant
-//! (n <= 4) multiplies n entries and sums at most 24 terms, so its error is below
-//! `(3n + 2n + 1)·U·perm(M) <= 21·U·perm(M)` for n = 4, where `perm(M)` is the permanent of the
-//! magnitudes (to first order in U; the 1% margin below covers the higher-order terms). When
-//! `|det| > 24·U·perm(M)`, the f64 sign is the exact sign; otherwise the 512-bit computation
+//! a magnitude `M >= |entry|` and an error below `5·U·M`: an input coefficient is rounded once
+//! to f64 (the grid's integers exceed 2^53), and a cut's entry `c_Q·p - c_P·q` takes two
+//! rounded inputs per product, the product's rounding and the subtraction's. A Laplace expansion
+//! of an n x n determinant multiplies n entries and sums its terms; with entry error `e·U·M` its
+//! error is below `(2e + 1)·U·perm(M)` for n = 2, `(3e + 5)·U·perm(M)` for n = 3 and
+//! `(4e + 9)·U·perm(M) = 29·U·perm(M)` for n = 4 and e = 5, where `perm(M)` is the permanent of
+//! the magnitudes (to first order in U; the margin below covers the higher-order terms). When
+//! `|det| > 32·U·perm(M)`, the f64 sign is the exact sign; otherwise the 768-bit computation
 //! decides. Each fallback is counted ([`fallback_count`]).
 
-use super::{GridPoint, Plane, U};
+use super::{GridPoint, Plane, U, w256};
 use bnum::cast::As;
-use bnum::types::I512;
+use bnum::types::{I256, I512};
 use std::cell::Cell;
 use std::cmp::Ordering;
+
+/// The exact path's integers: 768 bits, enough for every determinant here (module docs).
+pub type Wide = bnum::Int<96>;
 
 thread_local! {
     static FALLBACKS: Cell<u64> = const { Cell::new(0) };
@@ -71,7 +85,8 @@ impl LineApprox {
     /// `V - (a·x + b·y + d) = (A·X - a·x) + (B·Y - b·y) + (D - d)`, and
     /// `|A·X - a·x| <= ea·(|x| + e) + |a|·e`; evaluating `a·x + b·y + d` in f64 errs by at most
     /// `3·U·(|a·x| + |b·y| + |d|)` (to first order; the bound is widened by 1% for the rest and
-    /// for its own rounding).
+    /// for its own rounding). The point's coordinates are grid values below 2^56, so `x` and
+    /// `y` themselves are exact or carried in `e`.
     #[inline]
     pub fn sign_at(&self, [x, y, e]: [f64; 3]) -> Option<Ordering> {
         let (ax, by) = (self.a * x, self.b * y);
@@ -105,7 +120,7 @@ impl Line {
         match self {
             Line::Edge(p) => {
                 debug_assert_eq!(p.c, 0);
-                [entry(p.a as f64), entry(p.b as f64), entry(p.d as f64)]
+                [entry(p.a as f64), entry(p.b as f64), entry(p.d.as_())]
             }
             Line::Cut(p, q) => {
                 let (pc, qc) = (p.c as f64, q.c as f64);
@@ -116,16 +131,16 @@ impl Line {
                 [
                     combine(p.a as f64, q.a as f64),
                     combine(p.b as f64, q.b as f64),
-                    combine(p.d as f64, q.d as f64),
+                    combine(p.d.as_(), q.d.as_()),
                 ]
             }
         }
     }
 
-    /// The f64 coefficients with error bounds (each below `3·U·M`, see the module docs).
+    /// The f64 coefficients with error bounds (each below `5·U·M`, see the module docs).
     pub fn approx(&self) -> LineApprox {
         let [a, b, d] = self.filtered();
-        let e = |c: Entry| 3.0 * U * c.magnitude;
+        let e = |c: Entry| ENTRY_ERROR * c.magnitude;
         LineApprox {
             a: a.value,
             b: b.value,
@@ -136,31 +151,50 @@ impl Line {
         }
     }
 
-    /// The sign of the line at grid point (x, y), exactly in i128, every operation checked;
-    /// `None` if one would overflow (possible for cut lines of steep planes: c up to about 2^51
-    /// times |a·x + b·y + d| up to about 2^77), and the caller then decides another way.
-    pub fn sign_at_grid(&self, x: i32, y: i32) -> Option<Ordering> {
-        let (x, y) = (x as i128, y as i128);
-        let at = |p: &Plane| (p.a as i128 * x + p.b as i128 * y).checked_add(p.d);
-        let v = match self {
-            Line::Edge(p) => at(p)?,
-            Line::Cut(p, q) => (q.c as i128)
-                .checked_mul(at(p)?)?
-                .checked_sub((p.c as i128).checked_mul(at(q)?)?)?,
-        };
-        Some(v.cmp(&0))
+    /// The sign of the line at grid point (x, y), exactly: the f64 filter first, then exact
+    /// integers (i128 for an edge line; 512 bits for a cut, whose value reaches 2^274). Exact
+    /// evaluations here are not counted as fallbacks: they settle the exact zeros at shared grid
+    /// corners, which are common and expected.
+    pub fn sign_at_grid(&self, x: i64, y: i64) -> Ordering {
+        match self {
+            Line::Edge(p) => {
+                // |a|, |b| <= 2^54, |x|, |y| <= 2^53 and |d| < 2^108: i128.
+                let d: i128 = p.d.as_();
+                (p.a * x as i128 + p.b * y as i128 + d).cmp(&0)
+            }
+            Line::Cut(p, q) => {
+                let _ = (p, q);
+                match self.approx().sign_at([x as f64, y as f64, 0.0]) {
+                    Some(s) => s,
+                    None => self.sign_at_grid_exact(x, y),
+                }
+            }
+        }
+    }
+
+    /// [`Self::sign_at_grid`] without the filter: for callers whose own filter failed.
+    pub fn sign_at_grid_exact(&self, x: i64, y: i64) -> Ordering {
+        match self {
+            Line::Edge(..) => self.sign_at_grid(x, y),
+            Line::Cut(p, q) => {
+                let (x, y) = (w256(x as i128), w256(y as i128));
+                let at = |pl: &Plane| -> I512 { (w256(pl.a) * x + w256(pl.b) * y + pl.d).as_() };
+                let w = |v: i128| -> I512 { v.as_() };
+                (w(q.c) * at(p) - w(p.c) * at(q)).cmp(&w(0))
+            }
+        }
     }
 
     /// Exact coefficients (a, b, d).
-    pub fn exact(&self) -> [I512; 3] {
+    pub fn exact(&self) -> [Wide; 3] {
         match self {
-            Line::Edge(p) => [wide(p.a as i128), wide(p.b as i128), wide(p.d)],
+            Line::Edge(p) => [wide(p.a), wide(p.b), wide_256(p.d)],
             Line::Cut(p, q) => {
-                let (pc, qc) = (wide(p.c as i128), wide(q.c as i128));
+                let (pc, qc) = (wide(p.c), wide(q.c));
                 [
-                    qc * wide(p.a as i128) - pc * wide(q.a as i128),
-                    qc * wide(p.b as i128) - pc * wide(q.b as i128),
-                    qc * wide(p.d) - pc * wide(q.d),
+                    qc * wide(p.a) - pc * wide(q.a),
+                    qc * wide(p.b) - pc * wide(q.b),
+                    qc * wide_256(p.d) - pc * wide_256(q.d),
                 ]
             }
         }
@@ -172,7 +206,7 @@ impl Line {
         [a, b, entry(0.0), d]
     }
 
-    fn exact_row(&self) -> [I512; 4] {
+    fn exact_row(&self) -> [Wide; 4] {
         let [a, b, d] = self.exact();
         [a, b, zero(), d]
     }
@@ -185,11 +219,15 @@ fn entry(v: f64) -> Entry {
     }
 }
 
-fn wide(v: i128) -> I512 {
+fn wide(v: i128) -> Wide {
     v.as_()
 }
 
-fn zero() -> I512 {
+fn wide_256(v: I256) -> Wide {
+    v.as_()
+}
+
+fn zero() -> Wide {
     wide(0)
 }
 
@@ -198,17 +236,12 @@ fn plane_filtered(p: &Plane) -> [Entry; 4] {
         entry(p.a as f64),
         entry(p.b as f64),
         entry(p.c as f64),
-        entry(p.d as f64),
+        entry(p.d.as_()),
     ]
 }
 
-fn plane_exact(p: &Plane) -> [I512; 4] {
-    [
-        wide(p.a as i128),
-        wide(p.b as i128),
-        wide(p.c as i128),
-        wide(p.d),
-    ]
+fn plane_exact(p: &Plane) -> [Wide; 4] {
+    [wide(p.a), wide(p.b), wide(p.c), wide_256(p.d)]
 }
 
 /// Laplace expansion of a 3x3 determinant in f64, with the permanent of the magnitudes.
@@ -227,7 +260,7 @@ fn det3_f64(m: [[Entry; 3]; 3]) -> (f64, f64) {
     (det, perm)
 }
 
-fn det3_exact(m: [[I512; 3]; 3]) -> I512 {
+fn det3_exact(m: [[Wide; 3]; 3]) -> Wide {
     m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
         - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
@@ -263,7 +296,7 @@ fn det4_f64(m: [[Entry; 4]; 4]) -> (f64, f64) {
     (det, perm)
 }
 
-fn det4_exact(m: [[I512; 4]; 4]) -> I512 {
+fn det4_exact(m: [[Wide; 4]; 4]) -> Wide {
     let mut det = zero();
     for col in 0..4 {
         if m[0][col] == zero() {
@@ -284,8 +317,11 @@ fn det4_exact(m: [[I512; 4]; 4]) -> I512 {
     det
 }
 
+/// Error bound of an f64 entry, relative to its magnitude (see the module docs).
+const ENTRY_ERROR: f64 = 5.0 * U;
+
 /// Error bound factor of the filter (see the module docs).
-const FILTER: f64 = 24.0 * U;
+const FILTER: f64 = 32.0 * U;
 
 /// The sign of a filtered determinant, or `None` when the filter cannot decide.
 fn filtered_sign(det: f64, perm: f64) -> Option<Ordering> {
@@ -423,7 +459,7 @@ pub fn crossing_f64(l: &Line, m: &Line) -> [f64; 2] {
     if den == zero() {
         return [f64::NAN; 2];
     }
-    let f = |v: I512| -> f64 { v.as_() };
+    let f = |v: Wide| -> f64 { v.as_() };
     [f(b0 * d1 - b1 * d0) / f(den), f(a1 * d0 - a0 * d1) / f(den)]
 }
 
@@ -441,19 +477,19 @@ fn crossing_terms([a0, b0, d0]: [Entry; 3], [a1, b1, d1]: [Entry; 3]) -> (f64, f
 /// lines are too close to parallel for the bound to hold (the caller must then fall back on
 /// something exact, such as the bounds of the face).
 ///
-/// Each coefficient carries an error below `3·U·M` (see the module docs); the numerators
+/// Each coefficient carries an error below `5·U·M` (see the module docs); the numerators
 /// `b0·d1 - b1·d0`, `a1·d0 - a0·d1` and the denominator `a0·b1 - a1·b0` then err by at most
-/// `9·U` times the sum of their products' magnitudes, and the quotient by
+/// `13·U` times the sum of their products' magnitudes, and the quotient by
 /// `(e_num + |q|·e_den) / (|den| - e_den)` plus one rounding. The bound below doubles that.
 pub fn crossing_with_error(l: &Line, m: &Line) -> Option<([f64; 2], f64)> {
     let ([a0, b0, d0], [a1, b1, d1]) = (l.filtered(), m.filtered());
     let (den, nx, ny) = crossing_terms([a0, b0, d0], [a1, b1, d1]);
-    let e_den = 9.0 * U * (a0.magnitude * b1.magnitude + a1.magnitude * b0.magnitude);
+    let e_den = 13.0 * U * (a0.magnitude * b1.magnitude + a1.magnitude * b0.magnitude);
     if !den.is_finite() || den.abs() <= 2.0 * e_den || e_den.is_nan() {
         return None;
     }
-    let e_nx = 9.0 * U * (b0.magnitude * d1.magnitude + b1.magnitude * d0.magnitude);
-    let e_ny = 9.0 * U * (a1.magnitude * d0.magnitude + a0.magnitude * d1.magnitude);
+    let e_nx = 13.0 * U * (b0.magnitude * d1.magnitude + b1.magnitude * d0.magnitude);
+    let e_ny = 13.0 * U * (a1.magnitude * d0.magnitude + a0.magnitude * d1.magnitude);
     let (x, y) = (nx / den, ny / den);
     let err = |q: f64, e_num: f64| (e_num + q.abs() * e_den) / (den.abs() - e_den) + U * q.abs();
     let e = 2.0 * err(x, e_nx).max(err(y, e_ny));
@@ -477,8 +513,8 @@ pub fn heading(l: &Line, m: &Line) -> Ordering {
 
 /// Exact orientation of three grid points' (x, y): `Greater` for counter-clockwise (y up).
 pub fn orient2d(p: GridPoint, q: GridPoint, r: GridPoint) -> Ordering {
-    let det = (q.x as i64 - p.x as i64) * (r.y as i64 - p.y as i64)
-        - (q.y as i64 - p.y as i64) * (r.x as i64 - p.x as i64);
+    // Differences below 2^54, products below 2^108: i128.
+    let det = (q.x - p.x) as i128 * (r.y - p.y) as i128 - (q.y - p.y) as i128 * (r.x - p.x) as i128;
     det.cmp(&0)
 }
 

@@ -6,20 +6,20 @@
 //! is an exact rational ([`Param`]): its x (or y, for a steep carrier) coordinate, signed so
 //! that it grows along the carrier's direction. Two positions are compared in f64 when their
 //! proven error bounds ([`crossing_with_error`]) separate them, and otherwise exactly, by
-//! cross-multiplying 512-bit integers (crossing coordinates are quotients below 2^231 / 2^206,
-//! so products stay below 2^440). The only rounding is [`Carrier::pixel`]: each coordinate correctly rounded once, a
-//! function of the exact point alone, so a point named by two different line pairs gets the
-//! same bits.
+//! cross-multiplying 1024-bit integers (crossing coordinates are quotients of numerators below
+//! 2^495 by denominators below 2^440, so products stay below 2^935). The only rounding is
+//! [`Carrier::pixel`]: each coordinate correctly rounded once, a function of the exact point
+//! alone, so a point named by two different line pairs gets the same bits.
 
 use crate::draw::regions::exact_crossing;
 use crate::exact::Samples;
 use crate::exact::U;
-use crate::exact::predicates::{Line, crossing_with_error, heading};
+use crate::exact::predicates::{Line, Wide, crossing_with_error, heading};
 use bnum::cast::As;
-use bnum::types::I512;
+use bnum::types::I1024;
 use std::cmp::Ordering;
 
-fn wide(v: i32) -> I512 {
+fn wide(v: i64) -> Wide {
     v.as_()
 }
 
@@ -27,7 +27,7 @@ fn wide(v: i32) -> I512 {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum At {
     /// A grid point on the carrier (x, y).
-    Grid([i32; 2]),
+    Grid([i64; 2]),
     /// Where `Line` crosses the carrier (not parallel to it).
     Cross(Line),
 }
@@ -51,7 +51,7 @@ impl Param<'_> {
     }
 
     /// `num / den` (`den > 0`), exactly.
-    fn exact(&self) -> (I512, I512) {
+    fn exact(&self) -> (Wide, Wide) {
         let (num, den) = match &self.at {
             At::Grid([x, y]) => (wide(if self.carrier.along_x { *x } else { *y }), wide(1)),
             At::Cross(m) => {
@@ -102,11 +102,11 @@ impl Ord for Param<'_> {
             return Ordering::Less;
         }
         match (&self.at, &other.at) {
-            // Both exact in f64 (grid coordinates are small integers).
+            // Both exact in f64 (grid coordinates are integers below 2^54).
             (At::Grid(_), At::Grid(_)) => return self.approx.total_cmp(&other.approx),
             // A line through the grid point crosses the carrier there.
             (At::Grid([x, y]), At::Cross(m)) | (At::Cross(m), At::Grid([x, y]))
-                if m.sign_at_grid(*x, *y) == Some(Ordering::Equal) =>
+                if m.sign_at_grid(*x, *y) == Ordering::Equal =>
             {
                 return Ordering::Equal;
             }
@@ -116,7 +116,8 @@ impl Ord for Param<'_> {
         if d0 == d1 {
             return n0.cmp(&n1);
         }
-        (n0 * d1).cmp(&(n1 * d0))
+        let big = |v: Wide| -> I1024 { v.as_() };
+        (big(n0) * big(d1)).cmp(&(big(n1) * big(d0)))
     }
 }
 
@@ -229,11 +230,11 @@ mod tests {
     use super::*;
     use crate::exact::{GridPoint, Plane};
 
-    fn g(x: i32, y: i32) -> GridPoint {
+    fn g(x: i64, y: i64) -> GridPoint {
         GridPoint { x, y, z: 0 }
     }
 
-    fn edge(p: (i32, i32), q: (i32, i32)) -> Line {
+    fn edge(p: (i64, i64), q: (i64, i64)) -> Line {
         Line::Edge(Plane::edge(g(p.0, p.1), g(q.0, q.1)).unwrap())
     }
 

@@ -8,11 +8,10 @@
 //! Which pairs: every two screen polygons (back faces included: a hidden intersection is drawn
 //! too) whose boxes overlap on screen and in depth, that share no edge (two welded vertices),
 //! and whose meeting line passes strictly through both polygons. Pairs sharing one vertex are
-//! included where they cross beyond it, when both lie exactly in their support planes: a face
-//! whose snapped corners left one plane (a quad whose corners rounded off it) is drawn with the
-//! plane through three of them, and its neighbours around a vertex seem to cross it within that
-//! rounding; such pairs are left out, as not an intersection of the input. Coplanar faces have
-//! no meeting line and make none.
+//! included where they cross beyond it. Every screen polygon lies exactly in its support plane
+//! (`project` splits a face whose snapped corners left one plane into triangles), so faces
+//! around a shared vertex agree on its depth exactly. Coplanar faces have no meeting line and
+//! make none.
 //!
 //! A face seen exactly edge-on ([`FlatFace`]: no area on screen, so no screen polygon) still
 //! meets the faces that pass through it, along its screen line: there the meeting is the part
@@ -34,6 +33,10 @@ use std::cmp::Ordering;
 pub struct Meeting {
     /// The faces (`Scene::faces` indices), `faces[0] < faces[1]`.
     pub faces: [u32; 2],
+    /// The planes of the two screen polygons that meet, in the order of `faces` (a face may
+    /// be several polygons: `project` splits faces that are not planar on the grid); `None`
+    /// for an edge-on face, which has no polygon.
+    pub planes: Option<[Plane; 2]>,
     /// The screen line where their planes meet.
     pub line: Line,
     /// A support plane holding the meeting in 3D.
@@ -87,11 +90,6 @@ pub fn meetings(
             .count()
     };
     let share_an_edge = |fa: u32, fb: u32| shared(fa, fb) >= 2;
-    // Faces whose every corner lies in their support plane.
-    let planar: Vec<bool> = polys
-        .iter()
-        .map(|p| screen.corners(p).iter().all(|c| p.plane.value_at(*c) == 0))
-        .collect();
     let n = polys.len();
     let mut out = Vec::new();
     let boxes: Vec<[f64; 6]> = boxes
@@ -113,22 +111,15 @@ pub fn meetings(
             return;
         }
         let (pa, pb) = (&polys[a], &polys[b]);
-        let line = Line::Cut(pa.plane, pb.plane);
-        // For a face lying in its plane, the meeting line's side at a corner is the side of
-        // the other plane the corner lies on (cheaper to evaluate).
-        let straddles = |p: &ScreenPoly, planar: bool, other: &Plane| {
-            if planar {
-                straddles_plane(screen, p, other)
-            } else {
-                crosses(screen, p, &line)
-            }
-        };
-        if !straddles(pb, planar[b], &pa.plane) || !straddles(pa, planar[a], &pb.plane) {
+        // Every polygon lies in its plane (`project` splits the others), so the meeting line's
+        // side at a corner is the side of the other plane the corner lies on.
+        if !straddles_plane(screen, pb, &pa.plane) || !straddles_plane(screen, pa, &pb.plane) {
             return;
         }
+        let line = Line::Cut(pa.plane, pb.plane);
         match shared(pa.face, pb.face) {
             0 => {}
-            1 if planar[a] && planar[b] => {
+            1 => {
                 if apart_beyond_corner(screen, pa, pb, &line) == Some(true) {
                     return;
                 }
@@ -154,8 +145,14 @@ pub fn meetings(
         }
         if !extent.is_empty() {
             let (fa, fb) = (pa.face.min(pb.face), pa.face.max(pb.face));
+            let planes = if pa.face < pb.face {
+                [pa.plane, pb.plane]
+            } else {
+                [pb.plane, pa.plane]
+            };
             out.push(Meeting {
                 faces: [fa, fb],
+                planes: Some(planes),
                 line,
                 depth: pa.plane,
                 extent,
@@ -350,7 +347,7 @@ fn edge_on_meeting(flat: &FlatFace, b: &ScreenPoly, parts: &[Vec<Line>]) -> Opti
     let line = Line::Edge(Plane::edge(*lo, *hi)?);
     let carrier = Carrier::new(line);
     // Where b's plane crosses the face's sides in 3D, exactly.
-    let sign = |p: &GridPoint| b.plane.value_at(*p).cmp(&0);
+    let sign = |p: &GridPoint| b.plane.sign_at(*p);
     let signs: Vec<Ordering> = c.iter().map(sign).collect();
     if !signs.contains(&Ordering::Less) || !signs.contains(&Ordering::Greater) {
         return None;
@@ -379,6 +376,7 @@ fn edge_on_meeting(flat: &FlatFace, b: &ScreenPoly, parts: &[Vec<Line>]) -> Opti
         .collect();
     (!extent.is_empty()).then(|| Meeting {
         faces: [flat.face.min(b.face), flat.face.max(b.face)],
+        planes: None,
         line,
         depth: b.plane,
         extent,
@@ -416,63 +414,52 @@ fn screen_box(screen: &ScreenScene, p: &ScreenPoly) -> [f64; 4] {
     points_box(screen.corners(p))
 }
 
-/// The depth range of the polygon's plane over its corners (a filter), exactly: the plane's
-/// depth at a corner, `-(a·x + b·y + d) / c`, rounded outward to grid units in i128.
+/// The depth range of the polygon's plane over its corners (a filter): the plane's depth at a
+/// corner, `-(a·x + b·y + d) / c`, in f64 widened by its error bound (each coefficient rounded
+/// once, the products, the sum and the quotient once each: below `8·U` of the terms'
+/// magnitudes over `c`) and one grid unit.
 fn depth_range(screen: &ScreenScene, p: &ScreenPoly) -> [f64; 2] {
     let pl = &p.plane;
-    let (mut lo, mut hi) = (i128::MAX, i128::MIN);
-    for c in screen.corners(p) {
-        let num = -(pl.a as i128 * c.x as i128 + pl.b as i128 * c.y as i128 + pl.d);
-        let den = pl.c as i128;
-        lo = lo.min(num.div_euclid(den));
-        hi = hi.max(num.div_euclid(den) + 1);
+    let (a, b, c, d) = (
+        pl.a as f64,
+        pl.b as f64,
+        pl.c as f64,
+        bnum::cast::As::as_::<f64>(pl.d),
+    );
+    let (mut lo, mut hi) = (f64::MAX, f64::MIN);
+    for q in screen.corners(p) {
+        let (ax, by) = (a * q.x as f64, b * q.y as f64);
+        let z = -(ax + by + d) / c;
+        let err = 8.0 * crate::exact::U * (ax.abs() + by.abs() + d.abs()) / c + 1.0;
+        lo = lo.min(z - err);
+        hi = hi.max(z + err);
     }
-    // Depths are within the grid's range: exact in f64.
-    [lo as f64, hi as f64]
-}
-
-/// Does `line` pass strictly through the polygon: some corner on each side? Exact.
-fn crosses(screen: &ScreenScene, p: &ScreenPoly, line: &Line) -> bool {
-    let (mut pos, mut neg) = (false, false);
-    for c in screen.corners(p) {
-        match side_at(line, *c) {
-            Ordering::Greater => pos = true,
-            Ordering::Less => neg = true,
-            Ordering::Equal => {}
-        }
-        if pos && neg {
-            return true;
-        }
-    }
-    false
+    [lo, hi]
 }
 
 /// Do the polygon's corners lie strictly on both sides of `plane`? Exact.
 fn straddles_plane(screen: &ScreenScene, p: &ScreenPoly, plane: &Plane) -> bool {
     let (mut pos, mut neg) = (false, false);
     for c in screen.corners(p) {
-        let v = plane.value_at(*c);
-        pos |= v > 0;
-        neg |= v < 0;
+        match plane.sign_at(*c) {
+            Ordering::Greater => pos = true,
+            Ordering::Less => neg = true,
+            Ordering::Equal => {}
+        }
     }
     pos && neg
 }
 
 /// The sign of `line` at a grid point, exactly.
 fn side_at(line: &Line, c: GridPoint) -> Ordering {
-    line.sign_at_grid(c.x, c.y).unwrap_or_else(|| {
-        let [a, b, d] = line.exact();
-        let (x, y): (bnum::types::I512, bnum::types::I512) =
-            (bnum::cast::As::as_(c.x), bnum::cast::As::as_(c.y));
-        (a * x + b * y + d).cmp(&bnum::cast::As::as_(0i32))
-    })
+    line.sign_at_grid(c.x, c.y)
 }
 
 /// The polygon's convex parts, each as its side lines with the inside positive.
 pub(crate) fn convex_parts(screen: &ScreenScene, p: &ScreenPoly) -> Vec<Vec<Line>> {
     let corners = screen.corners(p);
     // Work counter-clockwise.
-    let ccw: Vec<GridPoint> = if crate::exact::twice_signed_area(corners) > 0 {
+    let ccw: Vec<GridPoint> = if crate::exact::twice_signed_area(corners).is_gt() {
         corners.to_vec()
     } else {
         corners.iter().rev().copied().collect()

@@ -157,7 +157,7 @@ pub fn exact_lines(
 pub struct LineTracks {
     tracks: Vec<Track>,
     of_side: Vec<u32>,
-    of_cut: HashMap<(u32, u32), u32>,
+    of_cut: HashMap<[Plane; 2], u32>,
     stats: LineStats,
 }
 
@@ -244,8 +244,8 @@ pub fn line_tracks(
     for meeting in intersections::meetings(scene, unculled, &flats, &features.weld) {
         stats.features[LineKind::Intersection as usize] += 1;
         let t = tracks.len() as u32;
-        if !meeting.edge_on {
-            of_cut.insert((meeting.faces[0], meeting.faces[1]), t);
+        if let Some(planes) = meeting.planes {
+            of_cut.insert(planes, t);
         }
         tracks.push(Track::new(
             meeting.line,

@@ -28,12 +28,11 @@ use super::LineOptions;
 use super::along::{At, Carrier, Param};
 use super::drawing::{LineKind, Visibility};
 use crate::exact::polygon::{Boundary, Piece};
-use crate::exact::predicates::{Line, depth_order_at};
-use crate::exact::{GRID_MAX, GridPoint, Plane, Samples};
+use crate::exact::predicates::{Line, Wide, depth_order_at};
+use crate::exact::{GRID_MAX, GridPoint, Plane, Samples, w256};
 use crate::project::ScreenScene;
 use crate::visibility::grid::BoxGrid;
 use bnum::cast::As;
-use bnum::types::I512;
 use rustc_hash::FxHashMap as HashMap;
 use std::cmp::Ordering;
 
@@ -110,8 +109,9 @@ pub struct TrackIndex<'a> {
     /// Per screen side (`ScreenScene::points` index): the track of the face edge it lies on, or
     /// `u32::MAX`.
     pub of_side: &'a [u32],
-    /// The track of the intersection of faces (a, b) (`Scene::faces` indices), a < b.
-    pub of_cut: &'a HashMap<(u32, u32), u32>,
+    /// The track of the intersection of two screen polygons, by their planes in the order of
+    /// their faces (`Scene::faces` indices; see [`super::intersections::Meeting::planes`]).
+    pub of_cut: &'a HashMap<[Plane; 2], u32>,
 }
 
 /// Vertex k of `piece` as a point of the line of its side k or k - 1: a grid corner, or where
@@ -155,8 +155,14 @@ pub fn mark_seen(screen: &ScreenScene, pieces: &[Piece], index: &TrackIndex, tra
                     }
                 }
                 Boundary::Cut { a, b } if a == piece.poly || b == piece.poly => {
-                    let [fa, fb] = [a, b].map(|p| screen.polys[p as usize].face);
-                    if let Some(&t) = index.of_cut.get(&(fa.min(fb), fa.max(fb))) {
+                    let [pa, pb] = [a, b].map(|p| &screen.polys[p as usize]);
+                    let (fa, fb) = (pa.face, pb.face);
+                    let key = if fa < fb {
+                        [pa.plane, pb.plane]
+                    } else {
+                        [pb.plane, pa.plane]
+                    };
+                    if let Some(&t) = index.of_cut.get(&key) {
                         let which = (poly.face == fa.max(fb)) as usize;
                         tracks[t as usize].seen[which].push(span);
                     }
@@ -187,18 +193,16 @@ pub fn mark_seen(screen: &ScreenScene, pieces: &[Piece], index: &TrackIndex, tra
 }
 
 /// Are two edge lines (vertical planes through grid points) the same line? Exact: their
-/// coefficients are proportional (products below 2^26 · 2^50).
+/// coefficients are proportional (products below 2^55 · 2^55 in i128, and 2^55 · 2^108 in
+/// 256 bits).
 fn same_edge_line(p: &Plane, q: &Plane) -> bool {
-    let (pa, pb, qa, qb) = (p.a as i128, p.b as i128, q.a as i128, q.b as i128);
-    pa * qb == pb * qa && pa * q.d == qa * p.d && pb * q.d == qb * p.d
+    let (pa, pb, qa, qb) = (p.a, p.b, q.a, q.b);
+    pa * qb == pb * qa && w256(pa) * q.d == w256(qa) * p.d && w256(pb) * q.d == w256(qb) * p.d
 }
 
-/// Does grid point `p` lie on the edge line `l`? Exact.
+/// Does grid point `p` lie on the line `l`? Exact.
 fn on_line(l: &Line, p: GridPoint) -> bool {
-    match l {
-        Line::Edge(e) => e.value_at(GridPoint { z: 0, ..p }) == 0,
-        Line::Cut(..) => l.sign_at_grid(p.x, p.y) == Some(Ordering::Equal),
-    }
+    l.sign_at_grid(p.x, p.y) == Ordering::Equal
 }
 
 /// What a drawn segment is.
@@ -226,9 +230,9 @@ pub struct Segment {
     pub ends: [[f64; 2]; 2],
 }
 
-/// The lines of the view rectangle (|x|, |y| <= 2^22 on the grid), inside positive.
+/// The lines of the view rectangle (|x|, |y| <= 2^52 on the grid), inside positive.
 fn view_lines() -> [Line; 4] {
-    let h = (GRID_MAX / 2) as i32;
+    let h = GRID_MAX / 2;
     let g = |x, y| GridPoint { x, y, z: 0 };
     let edge = |p, q| Line::Edge(Plane::edge(p, q).expect("distinct points"));
     [
@@ -306,7 +310,7 @@ pub fn segments(tracks: &[Track], samples: &Samples, options: &LineOptions) -> V
 
 /// Is `at` a grid point inside the view rectangle?
 fn in_view(at: &At) -> bool {
-    let h = (GRID_MAX / 2) as i32;
+    let h = GRID_MAX / 2;
     matches!(at, At::Grid([x, y]) if x.abs() <= h && y.abs() <= h)
 }
 
@@ -384,7 +388,7 @@ fn same_line_groups(tracks: &[Track]) -> Vec<Vec<usize>> {
 /// A line's exact coefficients with its normal turned into the half-plane a > 0, or a = 0 and
 /// b > 0 (the same line), and the same rounded to f64 for the filter of [`cmp_lines`].
 struct Normalized {
-    exact: [I512; 3],
+    exact: [Wide; 3],
     approx: [f64; 3],
 }
 
@@ -436,15 +440,17 @@ fn cmp_lines(l: &Normalized, m: &Normalized) -> Ordering {
 
 /// An edge line's exact identity: its coefficients divided by their gcd, the first non-zero of
 /// (a, b) positive. Lines of two planes' meeting are not grouped (`None`).
-type LineKey = (i64, i64, i128);
+type LineKey = (i128, i128, i128);
 
 fn line_key(l: &Line) -> Option<LineKey> {
     let Line::Edge(p) = l else { return None };
+    // An edge line's offset is below 2^108: i128.
+    let d: i128 = p.d.as_();
     let g = gcd(
-        gcd(p.a.unsigned_abs() as u128, p.b.unsigned_abs() as u128),
-        p.d.unsigned_abs(),
-    );
-    let (mut a, mut b, mut d) = (p.a / g as i64, p.b / g as i64, p.d / g as i128);
+        gcd(p.a.unsigned_abs(), p.b.unsigned_abs()),
+        d.unsigned_abs(),
+    ) as i128;
+    let (mut a, mut b, mut d) = (p.a / g, p.b / g, d / g);
     if a < 0 || (a == 0 && b < 0) {
         (a, b, d) = (-a, -b, -d);
     }

@@ -30,7 +30,8 @@ pub fn edge_covers_row(s: &Samples, p: GridPoint, q: GridPoint, j: i64) -> bool 
     let (lo, hi) = if p.y <= q.y { (p.y, q.y) } else { (q.y, p.y) };
     let yn = s.y_num(j);
     // y_j = yn / H, so lo <= y_j < hi  <=>  lo·H <= yn < hi·H.
-    lo as i64 * s.height <= yn && yn < hi as i64 * s.height
+    let h = s.height as i128;
+    lo as i128 * h <= yn && yn < hi as i128 * h
 }
 
 /// The sorted crossing columns of polygon `pts` with sample row `j` (see the module docs): the
@@ -69,7 +70,7 @@ pub fn covers(s: &Samples, pts: &[GridPoint], i: i64, j: i64, fallbacks: &Fallba
 /// Rows `[j0, j1)` that may hold samples of polygon `pts`: a superset computed in f64 from its
 /// extent in y (the rows the z-buffer scans); the exact edge test decides within it.
 pub fn candidate_rows(s: &Samples, pts: &[GridPoint]) -> (i64, i64) {
-    let (mut ylo, mut yhi) = (i32::MAX, i32::MIN);
+    let (mut ylo, mut yhi) = (i64::MAX, i64::MIN);
     for p in pts {
         ylo = ylo.min(p.y);
         yhi = yhi.max(p.y);

@@ -26,7 +26,7 @@
 
 use super::EMPTY;
 use super::sample::{self, DepthOrder};
-use crate::exact::{Fallbacks, GridPoint, Samples};
+use crate::exact::{Fallbacks, GridPoint, I256, Samples, XY_BITS, w256};
 use crate::project::ScreenScene;
 
 /// The result: per pixel the index of the visible [`ScreenPoly`](crate::project::ScreenPoly)
@@ -96,11 +96,12 @@ struct ActiveEdge {
     last: i64,
     /// Exact: the first column whose sample is at or right of the crossing with the current row.
     col: i64,
-    /// `(2·col + 1 - W)·D - N(row)`; `col` is right exactly when `0 <= e < two_d`.
-    e: i128,
-    two_d: i128,
+    /// `(2·col + 1 - W)·D - N(row)`; `col` is right exactly when `0 <= e < two_d`. D is below
+    /// 2^121 and N below 2^138 (see [`Samples::first_column_exact`]): 256-bit integers.
+    e: I256,
+    two_d: I256,
     /// Change of `e` from one row to the next at a fixed `col`.
-    e_step: i128,
+    e_step: I256,
     /// f64 estimate of the crossing's column coordinate minus 0.5 (`col == ceil(t)` unless the
     /// crossing is within rounding of a sample), and its change per row (1/m in columns).
     t: f64,
@@ -111,15 +112,14 @@ struct ActiveEdge {
 }
 
 /// Rows `[first, last]` (unclipped, possibly empty) whose sample y lies in `[lo, hi)`, exactly.
-fn rows_in(s: &Samples, lo: i32, hi: i32) -> (i64, i64) {
-    // y_num(j) = k·2^22 with k = H - 1 - 2j, and y_j = y_num / H.
-    // y_j < hi  <=>  k·2^22 < hi·H  <=>  k <= ceil(hi·H / 2^22) - 1.
-    let kmax = (hi as i64 * s.height).div_euclid(1 << 22)
-        + ((hi as i64 * s.height).rem_euclid(1 << 22) != 0) as i64
-        - 1;
-    // y_j >= lo  <=>  k·2^22 >= lo·H  <=>  k >= ceil(lo·H / 2^22).
-    let kmin = (lo as i64 * s.height).div_euclid(1 << 22)
-        + ((lo as i64 * s.height).rem_euclid(1 << 22) != 0) as i64;
+fn rows_in(s: &Samples, lo: i64, hi: i64) -> (i64, i64) {
+    // y_num(j) = k·2^52 with k = H - 1 - 2j, and y_j = y_num / H.
+    // y_j < hi  <=>  k·2^52 < hi·H  <=>  k <= ceil(hi·H / 2^52) - 1.
+    let unit = 1i128 << XY_BITS;
+    let ceil_div = |v: i128| (v.div_euclid(unit) + (v.rem_euclid(unit) != 0) as i128) as i64;
+    let kmax = ceil_div(hi as i128 * s.height as i128) - 1;
+    // y_j >= lo  <=>  k·2^52 >= lo·H  <=>  k >= ceil(lo·H / 2^52).
+    let kmin = ceil_div(lo as i128 * s.height as i128);
     // 2j >= H - 1 - kmax and 2j <= H - 1 - kmin.
     let first =
         (s.height - 1 - kmax).div_euclid(2) + ((s.height - 1 - kmax).rem_euclid(2) != 0) as i64;
@@ -139,28 +139,29 @@ impl ActiveEdge {
         fb: &Fallbacks,
     ) -> ActiveEdge {
         let (p, q) = if a.y <= b.y { (a, b) } else { (b, a) };
-        let (w, h) = (s.width as i128, s.height as i128);
-        let dy = (q.y - p.y) as i128;
-        let dx = (q.x - p.x) as i128;
+        let (w, h) = (w256(s.width as i128), w256(s.height as i128));
+        let dy = w256((q.y - p.y) as i128);
+        let dx = w256((q.x - p.x) as i128);
         // The z-buffer's crossing test (Samples::first_column_exact): sample i is at or right of
         // the crossing iff (2i + 1 - W)·D >= N(j), with
-        let d = (dy * h) << 22;
-        let n = (p.x as i128 * dy * h + (s.y_num(j) as i128 - p.y as i128 * h) * dx) * w;
-        // and y_num(j + 1) = y_num(j) - 2^23, so N(j + 1) = N(j) - 2^23·dx·W.
+        let d = (dy * h) << XY_BITS;
+        let n = (w256(p.x as i128) * dy * h + (w256(s.y_num(j)) - w256(p.y as i128) * h) * dx) * w;
+        // and y_num(j + 1) = y_num(j) - 2^53, so N(j + 1) = N(j) - 2^53·dx·W.
         let col = s.first_column_at_or_right(p, q, j, fb);
-        let e = (2 * col as i128 + 1 - w) * d - n;
-        debug_assert!(0 <= e && e < 2 * d, "crossing residue out of range");
+        let two_d = d + d;
+        let e = w256(2 * col as i128 + 1) * d - w * d - n;
+        debug_assert!(w256(0) <= e && e < two_d, "crossing residue out of range");
         ActiveEdge {
             poly,
             last,
             col,
             e,
-            two_d: 2 * d,
-            e_step: (dx * w) << 23,
+            two_d,
+            e_step: (dx * w) << (XY_BITS + 1),
             t: estimate(s, p, q, j),
-            // One row down, y drops 2^23/H grid units: x moves -(dx/dy)·2^23/H grid units, which
+            // One row down, y drops 2^53/H grid units: x moves -(dx/dy)·2^53/H grid units, which
             // is -(dx/dy)·W/H columns.
-            dt: -(dx as f64 / dy as f64) * (s.width as f64 / s.height as f64),
+            dt: -((q.x - p.x) as f64 / (q.y - p.y) as f64) * (s.width as f64 / s.height as f64),
             p,
             q,
         }
@@ -172,12 +173,13 @@ impl ActiveEdge {
     fn advance(&mut self, s: &Samples, next_row: i64) -> bool {
         self.t += self.dt;
         let cand = self.t.ceil() as i64;
-        self.e += self.e_step + self.two_d * (cand - self.col) as i128;
+        self.e += self.e_step + self.two_d * w256((cand - self.col) as i128);
         self.col = cand;
-        if 0 <= self.e && self.e < self.two_d {
+        let zero = w256(0);
+        if zero <= self.e && self.e < self.two_d {
             return false;
         }
-        while self.e < 0 {
+        while self.e < zero {
             self.col += 1;
             self.e += self.two_d;
         }
@@ -408,14 +410,13 @@ mod tests {
         for (w, h) in [(16, 12), (7, 5), (3, 96), (100, 33)] {
             let s = Samples::new(w, h);
             // Bounds on and around sample rows, and arbitrary ones.
-            let mut ys: Vec<i32> = (0..h as i64)
+            let mut ys: Vec<i64> = (0..h as i64)
                 .flat_map(|j| {
-                    let y = s.y_num(j) / h as i64;
+                    let y = (s.y_num(j) / h as i128) as i64;
                     [y - 1, y, y + 1]
                 })
-                .map(|y| y as i32)
                 .collect();
-            ys.extend([-(1 << 23), -(1 << 22), -1, 0, 1, 12345, 1 << 22, 1 << 23]);
+            ys.extend([-(1 << 53), -(1 << 52), -1, 0, 1, 12345, 1 << 52, 1 << 53]);
             for &lo in &ys {
                 for &hi in &ys {
                     if lo >= hi {
@@ -445,14 +446,14 @@ mod tests {
             seed = seed
                 .wrapping_mul(6364136223846793005)
                 .wrapping_add(1442695040888963407);
-            ((seed >> 11) % (2 * m as u64 + 1)) as i64 - m
+            (seed % (2 * m as u64 + 1)) as i64 - m
         };
         let mut corrections = 0;
         for k in 0..3000 {
             // Every third edge runs between sample points: crossings land exactly on samples.
             let (a, b) = if k % 3 == 0 {
-                let cx = |i: i64| (s.x_num(i) / 37) as i32;
-                let cy = |j: i64| (s.y_num(j) / 29) as i32;
+                let cx = |i: i64| (s.x_num(i) / 37) as i64;
+                let cy = |j: i64| (s.y_num(j) / 29) as i64;
                 (
                     GridPoint {
                         x: cx(rnd(20) + 18),
@@ -466,16 +467,16 @@ mod tests {
                     },
                 )
             } else {
-                let m = 1 << 23;
+                let m = 1 << 53;
                 (
                     GridPoint {
-                        x: rnd(m) as i32,
-                        y: rnd(m) as i32,
+                        x: rnd(m),
+                        y: rnd(m),
                         z: 0,
                     },
                     GridPoint {
-                        x: rnd(m) as i32,
-                        y: rnd(m) as i32,
+                        x: rnd(m),
+                        y: rnd(m),
                         z: 0,
                     },
                 )

@@ -10,8 +10,9 @@
 //! - **crossing** (the seed's intersecting and contained): an edge meets `R`.
 //!
 //! Segment against rectangle is exact: sample coordinates are rationals `x_num / W`, `y_num / H`,
-//! so scaling grid x by W and y by H makes everything integer (below 2^38), and the side of a
-//! rectangle corner relative to an edge is an i128 cross product (below 2^77).
+//! so scaling grid x by W and y by H makes everything integer (below 2^68, i128), and the side
+//! of a rectangle corner relative to an edge is a cross product below 2^139: decided in f64 with
+//! a proven bound, in 256-bit integers when the bound cannot.
 //!
 //! Disjoint polygons leave the list; surrounding ones stay surrounding in every sub-area and are
 //! not classified again. The seed's trivial cases, then:
@@ -110,10 +111,10 @@ struct Area {
 /// The closed rectangle spanned by an area's samples, scaled (x by W, y by H) to integers.
 #[derive(Clone, Copy, Debug)]
 struct Rect {
-    x0: i64,
-    x1: i64,
-    y0: i64,
-    y1: i64,
+    x0: i128,
+    x1: i128,
+    y0: i128,
+    y1: i128,
 }
 
 impl Area {
@@ -130,15 +131,30 @@ impl Area {
 
 /// Does the closed segment `p q` (scaled grid points) meet the closed rectangle `r`? Exact:
 /// separating axes x, y and the segment's normal.
-fn segment_meets_rect(p: [i64; 2], q: [i64; 2], r: &Rect) -> bool {
+fn segment_meets_rect(p: [i128; 2], q: [i128; 2], r: &Rect) -> bool {
     if p[0].max(q[0]) < r.x0 || p[0].min(q[0]) > r.x1 {
         return false;
     }
     if p[1].max(q[1]) < r.y0 || p[1].min(q[1]) > r.y1 {
         return false;
     }
-    let (dx, dy) = ((q[0] - p[0]) as i128, (q[1] - p[1]) as i128);
-    let side = |x: i64, y: i64| (dx * (y - p[1]) as i128 - dy * (x - p[0]) as i128).signum();
+    let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+    let side = |x: i128, y: i128| {
+        let (u, v) = (y - p[1], x - p[0]);
+        // Each difference is exact in i128 and rounded once to f64, each product once more and
+        // the difference once: the f64 value is within 4·U of the products' magnitudes.
+        let (l, r) = (dx as f64 * u as f64, dy as f64 * v as f64);
+        let approx = l - r;
+        if approx.abs() > 4.0 * crate::exact::U * (l.abs() + r.abs()) * 1.01 {
+            return approx.signum() as i32;
+        }
+        let w = crate::exact::w256;
+        match (w(dx) * w(u)).cmp(&(w(dy) * w(v))) {
+            std::cmp::Ordering::Less => -1,
+            std::cmp::Ordering::Equal => 0,
+            std::cmp::Ordering::Greater => 1,
+        }
+    };
     let s = [
         side(r.x0, r.y0),
         side(r.x1, r.y0),
@@ -155,7 +171,7 @@ struct Renderer<'a> {
     s: Samples,
     fb: Fallbacks,
     /// Per polygon its scaled bounding box `[x0, y0, x1, y1]`.
-    bounds: Vec<[i64; 4]>,
+    bounds: Vec<[i128; 4]>,
     out: Vec<u32>,
     stats: WarnockStats,
     /// The lists of all areas on the current path, one after the other.
@@ -172,9 +188,9 @@ pub fn render(screen: &ScreenScene) -> Warnock {
         .polys
         .iter()
         .map(|p| {
-            let mut b = [i64::MAX, i64::MAX, i64::MIN, i64::MIN];
+            let mut b = [i128::MAX, i128::MAX, i128::MIN, i128::MIN];
             for q in screen.corners(p) {
-                let (x, y) = (q.x as i64 * w, q.y as i64 * h);
+                let (x, y) = (q.x as i128 * w as i128, q.y as i128 * h as i128);
                 b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
             }
             b
@@ -228,7 +244,7 @@ impl Renderer<'_> {
         }
         let pts = self.screen.corners(&self.screen.polys[poly as usize]);
         let (w, h) = (self.s.width, self.s.height);
-        let scaled = |g: GridPoint| [g.x as i64 * w, g.y as i64 * h];
+        let scaled = |g: GridPoint| [g.x as i128 * w as i128, g.y as i128 * h as i128];
         for k in 0..pts.len() {
             let (p, q) = (scaled(pts[k]), scaled(pts[(k + 1) % pts.len()]));
             if segment_meets_rect(p, q, r) {
@@ -386,24 +402,28 @@ mod tests {
 
     /// An independent reference for "the closed segment meets the closed rectangle": an endpoint
     /// inside it, or the segment meeting one of its sides (exact orientation tests).
-    fn reference(p: [i64; 2], q: [i64; 2], r: &Rect) -> bool {
-        let inside = |v: [i64; 2]| r.x0 <= v[0] && v[0] <= r.x1 && r.y0 <= v[1] && v[1] <= r.y1;
+    fn reference(p: [i128; 2], q: [i128; 2], r: &Rect) -> bool {
+        let inside = |v: [i128; 2]| r.x0 <= v[0] && v[0] <= r.x1 && r.y0 <= v[1] && v[1] <= r.y1;
         if inside(p) || inside(q) {
             return true;
         }
-        let orient = |a: [i64; 2], b: [i64; 2], c: [i64; 2]| {
-            ((b[0] - a[0]) as i128 * (c[1] - a[1]) as i128
-                - (b[1] - a[1]) as i128 * (c[0] - a[0]) as i128)
-                .signum()
+        let w = crate::exact::w256;
+        let orient = |a: [i128; 2], b: [i128; 2], c: [i128; 2]| match (w(b[0] - a[0])
+            * w(c[1] - a[1]))
+        .cmp(&(w(b[1] - a[1]) * w(c[0] - a[0])))
+        {
+            std::cmp::Ordering::Less => -1,
+            std::cmp::Ordering::Equal => 0,
+            std::cmp::Ordering::Greater => 1,
         };
-        let on = |a: [i64; 2], b: [i64; 2], c: [i64; 2]| {
+        let on = |a: [i128; 2], b: [i128; 2], c: [i128; 2]| {
             orient(a, b, c) == 0
                 && a[0].min(b[0]) <= c[0]
                 && c[0] <= a[0].max(b[0])
                 && a[1].min(b[1]) <= c[1]
                 && c[1] <= a[1].max(b[1])
         };
-        let meets = |a: [i64; 2], b: [i64; 2], c: [i64; 2], d: [i64; 2]| {
+        let meets = |a: [i128; 2], b: [i128; 2], c: [i128; 2], d: [i128; 2]| {
             let (d1, d2, d3, d4) = (
                 orient(c, d, a),
                 orient(c, d, b),
@@ -419,17 +439,21 @@ mod tests {
     #[test]
     fn segment_against_rectangle_is_exact_on_touching_cases() {
         let mut seed = 3u64;
-        let mut rnd = |m: i64| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) % (2 * m as u64 + 1)) as i64 - m
+        let mut rnd = |m: i128| {
+            let mut next = || {
+                seed = seed
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                seed >> 11
+            };
+            let v = ((next() as u128) << 53) | next() as u128;
+            (v % (2 * m as u128 + 1)) as i128 - m
         };
         let mut hits = [0usize; 2];
         for k in 0..200_000 {
             // Small coordinates make touching (corners, sides, collinear) cases common; large
             // ones check the magnitudes.
-            let m = if k % 2 == 0 { 6 } else { 1 << 37 };
+            let m = if k % 2 == 0 { 6 } else { 1 << 67 };
             let (mut x0, mut x1, mut y0, mut y1) = (rnd(m), rnd(m), rnd(m), rnd(m));
             if x0 > x1 {
                 std::mem::swap(&mut x0, &mut x1);

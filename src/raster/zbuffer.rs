@@ -73,7 +73,7 @@ pub fn render(screen: &ScreenScene, mut progress: impl FnMut(usize)) -> ZBuffer 
             progress(pi);
         }
         let pts = screen.corners(poly);
-        let (mut ylo, mut yhi) = (i32::MAX, i32::MIN);
+        let (mut ylo, mut yhi) = (i64::MAX, i64::MIN);
         for p in pts {
             ylo = ylo.min(p.y);
             yhi = yhi.max(p.y);
@@ -89,7 +89,7 @@ pub fn render(screen: &ScreenScene, mut progress: impl FnMut(usize)) -> ZBuffer 
                 let (p, q) = (pts[k], pts[(k + 1) % pts.len()]);
                 let (lo, hi) = if p.y <= q.y { (p.y, q.y) } else { (q.y, p.y) };
                 // lo <= y_j < hi, with y_j = yn / H.
-                if lo as i64 * s.height <= yn && yn < hi as i64 * s.height {
+                if lo as i128 * s.height as i128 <= yn && yn < hi as i128 * s.height as i128 {
                     crossings.push(s.first_column_at_or_right(p, q, j, &fallbacks));
                 }
             }

@@ -24,7 +24,7 @@
 
 use super::{Material, Scene, SceneBuilder};
 use glam::{DMat4, DVec3};
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
 /// Segments around the y axis of a Sphere, Cone or Cylinder.
 pub const DEFAULT_SEGMENTS: usize = 32;
@@ -149,11 +149,60 @@ pub fn box_mesh(size: DVec3) -> Tessellation {
     t
 }
 
+/// The sine and cosine of `n/d` of a turn, exactly symmetric: the angle is reduced to the first
+/// eighth of a turn by exact integer reflections (`a -> 1 - a`, `1/2 - a`, `1/4 - a`) before
+/// one `sin_cos`, so points mirrored across an axis or a diagonal of the circle are mirrored
+/// exactly, and quarter turns are exactly 0 and ±1. An exact engine then sees a symmetric
+/// primitive's symmetric parts coincide exactly (as a cube's faces do).
+pub fn turn_sin_cos(n: usize, d: usize) -> (f64, f64) {
+    let full = 8 * d;
+    let m = (8 * n) % full;
+    let (m, sin_sign) = if m > full / 2 {
+        (full - m, -1.0)
+    } else {
+        (m, 1.0)
+    };
+    let (m, cos_sign) = if m > full / 4 {
+        (full / 2 - m, -1.0)
+    } else {
+        (m, 1.0)
+    };
+    let (m, swap) = if m > full / 8 {
+        (full / 4 - m, true)
+    } else {
+        (m, false)
+    };
+    let (s, c) = if m == 0 {
+        (0.0, 1.0)
+    } else if m == full / 8 {
+        (
+            std::f64::consts::FRAC_1_SQRT_2,
+            std::f64::consts::FRAC_1_SQRT_2,
+        )
+    } else {
+        (TAU * m as f64 / full as f64).sin_cos()
+    };
+    let (s, c) = if swap { (c, s) } else { (s, c) };
+    // No negative zeros: a mirrored zero is the same coordinate.
+    let signed = |v: f64, sign: f64| if v == 0.0 { 0.0 } else { sign * v };
+    (signed(s, sin_sign), signed(c, cos_sign))
+}
+
+/// A quarter turn about the x axis (y to z), exactly: `DMat4::from_rotation_x(PI / 2)` has
+/// cos(PI / 2) = 6e-17 where this has 0.
+pub fn quarter_turn_x() -> DMat4 {
+    DMat4::from_cols(
+        glam::DVec4::new(1.0, 0.0, 0.0, 0.0),
+        glam::DVec4::new(0.0, 0.0, 1.0, 0.0),
+        glam::DVec4::new(0.0, -1.0, 0.0, 0.0),
+        glam::DVec4::new(0.0, 0.0, 0.0, 1.0),
+    )
+}
+
 /// The ring point at angle index `j` of `segments`: angle 0 on +x, increasing towards -z, so
 /// that increasing `j` runs left to right seen from outside (y up).
 fn ring_point(radius: f64, y: f64, j: usize, segments: usize) -> DVec3 {
-    let theta = TAU * j as f64 / segments as f64;
-    let (s, c) = theta.sin_cos();
+    let (s, c) = turn_sin_cos(j, segments);
     DVec3::new(radius * c, y, -radius * s)
 }
 
@@ -165,8 +214,7 @@ pub fn sphere_mesh(radius: f64, segments: usize, rings: usize) -> Tessellation {
     let north = t.vertex(DVec3::new(0.0, r, 0.0));
     // Ring i (1..n) starts at vertex 1 + (i - 1) * s.
     for i in 1..n {
-        let phi = PI * i as f64 / n as f64;
-        let (sp, cp) = phi.sin_cos();
+        let (sp, cp) = turn_sin_cos(i, 2 * n);
         for j in 0..s {
             t.vertex(ring_point(r * sp, r * cp, j, s));
         }
@@ -246,11 +294,9 @@ pub fn torus_mesh(major: f64, minor: f64, segments: usize, sides: usize) -> Tess
     let (s, k) = (segments.max(3), sides.max(3));
     let mut t = Tessellation::default();
     for j in 0..s {
-        let theta = TAU * j as f64 / s as f64;
-        let (st, ct) = theta.sin_cos();
+        let (st, ct) = turn_sin_cos(j, s);
         for i in 0..k {
-            let psi = TAU * i as f64 / k as f64;
-            let (sp, cp) = psi.sin_cos();
+            let (sp, cp) = turn_sin_cos(i, k);
             let rho = big + small * cp;
             t.vertex(DVec3::new(rho * ct, small * sp, -rho * st));
         }
@@ -451,6 +497,35 @@ pub fn random_triangle_soup(count: usize, seed: u64) -> Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn turns_are_exactly_symmetric_and_quarter_turns_exact() {
+        for d in [3, 4, 7, 8, 12, 14, 40, 41] {
+            for n in 0..d {
+                let (s, c) = turn_sin_cos(n, d);
+                let (ms, mc) = turn_sin_cos(d - n, d);
+                assert_eq!((s, c), (-ms + 0.0, mc), "{n}/{d} mirrored");
+                let want = (std::f64::consts::TAU * n as f64 / d as f64).sin_cos();
+                assert!((s - want.0).abs() < 2e-15 && (c - want.1).abs() < 2e-15);
+                if 2 * n <= d {
+                    // Across the y axis: the half turn minus the angle.
+                    if d % 2 == 0 {
+                        assert_eq!(turn_sin_cos(d / 2 - n, d), (s, -c + 0.0));
+                    }
+                }
+            }
+            if d % 4 == 0 {
+                assert_eq!(turn_sin_cos(d / 4, d), (1.0, 0.0));
+                assert_eq!(turn_sin_cos(d / 2, d), (0.0, -1.0));
+            }
+        }
+        let p = quarter_turn_x().transform_point3(DVec3::new(1.0, 2.0, 3.0));
+        assert_eq!(p, DVec3::new(1.0, -3.0, 2.0));
+        let r = DMat4::from_rotation_x(std::f64::consts::FRAC_PI_2)
+            .transform_point3(DVec3::new(1.0, 2.0, 3.0));
+        assert!((r - p).length() < 1e-15);
+    }
 
     /// Signed volume and "every directed edge once, its reverse once".
     fn check_closed(t: &Tessellation) -> f64 {

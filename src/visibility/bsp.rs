@@ -106,7 +106,7 @@ fn screen_line(axis: usize, m: i64) -> Line {
         a,
         b,
         c: 0,
-        d: -(m as i128),
+        d: crate::exact::w256(-(m as i128)),
     })
 }
 

@@ -84,7 +84,7 @@ fn coverage_of<'a>(
     mut pieces: Vec<Piece>,
     report: Option<Report>,
 ) -> Coverage<'a> {
-    let near: Vec<i32> = screen
+    let near: Vec<i64> = screen
         .polys
         .iter()
         .map(|p| screen.corners(p).iter().map(|c| c.z).min().unwrap_or(0))

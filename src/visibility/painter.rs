@@ -45,7 +45,7 @@ impl Strategy for Painter {
 
 /// Indices into `screen.polys`, back to front (see the module docs for the key).
 pub fn painter_order(screen: &ScreenScene) -> Vec<usize> {
-    let mut keys: Vec<(Reverse<i32>, Reverse<i32>, u32, usize)> = screen
+    let mut keys: Vec<(Reverse<i64>, Reverse<i64>, u32, usize)> = screen
         .polys
         .iter()
         .enumerate()
@@ -67,7 +67,7 @@ mod tests {
     use crate::exact::{GridPoint, Plane};
     use crate::project::ScreenPoly;
 
-    fn screen_of(tris: &[([i32; 3], u32)]) -> ScreenScene {
+    fn screen_of(tris: &[([i64; 3], u32)]) -> ScreenScene {
         let mut s = ScreenScene {
             width: 8,
             height: 8,

@@ -33,7 +33,7 @@
 
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::{Line, line_side};
-use crate::exact::{Plane, Samples};
+use crate::exact::{Plane, Samples, w256};
 use crate::project::ScreenScene;
 use std::cmp::Ordering;
 
@@ -133,9 +133,9 @@ impl VisibleSet {
                 // The sample row y = y_num/H as the line H·y - y_num = 0.
                 let row = Line::Edge(Plane {
                     a: 0,
-                    b: h,
+                    b: h as i128,
                     c: 0,
-                    d: -(s.y_num(j) as i128),
+                    d: w256(-s.y_num(j)),
                 });
                 for i in i0..i1 {
                     let k = (j * w + i) as usize;
@@ -143,10 +143,10 @@ impl VisibleSet {
                         continue;
                     }
                     let col = Line::Edge(Plane {
-                        a: w,
+                        a: w as i128,
                         b: 0,
                         c: 0,
-                        d: -(s.x_num(i) as i128),
+                        d: w256(-s.x_num(i)),
                     });
                     let inside = piece
                         .lines

@@ -666,15 +666,11 @@ fn exact_camera_snaps_dyadic_points_exactly() {
     add_polygon(&mut b, &p);
     let scene = b.finish().unwrap();
     let screen = prepare(&scene, &exact_camera(), CullMode::Auto).screen;
-    let grid: Vec<[i64; 3]> = screen
-        .points
-        .iter()
-        .map(|c| [c.x as i64, c.y as i64, c.z as i64])
-        .collect();
+    let grid: Vec<[i64; 3]> = screen.points.iter().map(|c| [c.x, c.y, c.z]).collect();
     let want: Vec<[i64; 3]> = p
         .iter()
         .map(|q| {
-            let s = (1u64 << 21) as f64;
+            let s = (1u64 << 51) as f64;
             [(q.x * s) as i64, (q.y * s) as i64, (-q.z * s) as i64]
         })
         .collect();

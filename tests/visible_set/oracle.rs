@@ -17,6 +17,11 @@ use sightline::exact::predicates::Line;
 use sightline::project::ScreenScene;
 use std::cmp::Ordering;
 
+/// A kernel's 256-bit integer, exactly.
+pub fn big256(v: sightline::exact::I256) -> BigInt {
+    v.to_string().parse().expect("an integer")
+}
+
 pub fn big(v: i128) -> BigInt {
     BigInt::from(v)
 }
@@ -56,13 +61,13 @@ pub type Coeffs = [BigInt; 3];
 
 fn coeffs(l: &Line) -> Coeffs {
     match l {
-        Line::Edge(p) => [big(p.a as i128), big(p.b as i128), big(p.d)],
+        Line::Edge(p) => [big(p.a), big(p.b), big256(p.d)],
         Line::Cut(p, q) => {
-            let (pc, qc) = (big(p.c as i128), big(q.c as i128));
+            let (pc, qc) = (big(p.c), big(q.c));
             [
-                &qc * big(p.a as i128) - &pc * big(q.a as i128),
-                &qc * big(p.b as i128) - &pc * big(q.b as i128),
-                &qc * big(p.d) - &pc * big(q.d),
+                &qc * big(p.a) - &pc * big(q.a),
+                &qc * big(p.b) - &pc * big(q.b),
+                &qc * big256(p.d) - &pc * big256(q.d),
             ]
         }
     }
@@ -210,11 +215,7 @@ pub fn screen_polys(screen: &ScreenScene) -> Vec<Poly> {
         .map(|p| Poly {
             id: p.id,
             plane: p.plane,
-            pts: screen
-                .corners(p)
-                .iter()
-                .map(|c| [c.x as i64, c.y as i64])
-                .collect(),
+            pts: screen.corners(p).iter().map(|c| [c.x, c.y]).collect(),
         })
         .collect()
 }
@@ -343,12 +344,22 @@ pub fn sat_separated(p: &ExactPiece, q: &ExactPiece) -> bool {
     outside(p, q) || outside(q, p)
 }
 
-/// A rational number n/d with d > 0, in i128 (crossing abscissas: |n| < 2^75, d < 2^51, so a
-/// cross-multiplied comparison stays below 2^127).
+/// A rational number n/d with d > 0, in 512-bit integers (crossing abscissas of 54-bit grid
+/// points: |n| < 2^166, d < 2^111, so a cross-multiplied comparison stays below 2^278).
 #[derive(Clone, Copy, Debug)]
 struct Frac {
-    pub n: i128,
-    pub d: i128,
+    pub n: I512,
+    pub d: I512,
+}
+
+type I512 = bnum::types::I512;
+
+fn w512(v: i128) -> I512 {
+    bnum::cast::As::as_(v)
+}
+
+fn big512(v: I512) -> BigInt {
+    v.to_string().parse().expect("an integer")
 }
 
 impl Frac {
@@ -369,8 +380,8 @@ pub fn union_area(polys: &[&[[i64; 2]]]) -> BigRational {
         for k in 0..n {
             let (a, b) = (pts[k], pts[(k + 1) % n]);
             xs.push(Frac {
-                n: a[0] as i128,
-                d: 1,
+                n: w512(a[0] as i128),
+                d: w512(1),
             });
             match a[0].cmp(&b[0]) {
                 Ordering::Less => edges.push((a, b, i)),
@@ -392,9 +403,13 @@ pub fn union_area(polys: &[&[[i64; 2]]]) -> BigRational {
             let (o1, o2) = (o(c, d, a), o(c, d, b));
             let (o3, o4) = (o(a, b, c), o(a, b, d));
             if o1.signum() * o2.signum() < 0 && o3.signum() * o4.signum() < 0 {
-                let den = o1 - o2;
-                let num = a[0] as i128 * den + o1 * (b[0] - a[0]) as i128;
-                let (num, den) = if den < 0 { (-num, -den) } else { (num, den) };
+                let den = w512(o1) - w512(o2);
+                let num = w512(a[0] as i128) * den + w512(o1) * w512((b[0] - a[0]) as i128);
+                let (num, den) = if den < w512(0) {
+                    (-num, -den)
+                } else {
+                    (num, den)
+                };
                 xs.push(Frac { n: num, d: den });
             }
         }
@@ -402,8 +417,13 @@ pub fn union_area(polys: &[&[[i64; 2]]]) -> BigRational {
     xs.sort_by(Frac::cmp);
     xs.dedup_by(|a, b| a.cmp(b) == Ordering::Equal);
     let index = |x: i64| {
-        xs.binary_search_by(|f| f.cmp(&Frac { n: x as i128, d: 1 }))
-            .expect("every corner abscissa is an event")
+        xs.binary_search_by(|f| {
+            f.cmp(&Frac {
+                n: w512(x as i128),
+                d: w512(1),
+            })
+        })
+        .expect("every corner abscissa is an event")
     };
     let mut slab_edges: Vec<Vec<usize>> = vec![Vec::new(); xs.len().saturating_sub(1)];
     for (k, e) in edges.iter().enumerate() {
@@ -418,8 +438,8 @@ pub fn union_area(polys: &[&[[i64; 2]]]) -> BigRational {
         }
         let (l, r) = (xs[s], xs[s + 1]);
         // Midline x = mn / md.
-        let mn = big(l.n) * big(r.d) + big(r.n) * big(l.d);
-        let md = big(2) * big(l.d) * big(r.d);
+        let mn = big512(l.n) * big512(r.d) + big512(r.n) * big512(l.d);
+        let md = big(2) * big512(l.d) * big512(r.d);
         // Edge e at the midline: y = Y / (dx · md) with dx = b.x - a.x > 0 and
         // Y = a.y·dx·md + (mn - a.x·md)·(b.y - a.y). md is common: compare and sum Y/dx.
         let mut by_poly: Vec<Vec<(BigInt, i64)>> = vec![Vec::new(); polys.len()];
@@ -469,8 +489,8 @@ pub fn union_area(polys: &[&[[i64; 2]]]) -> BigRational {
         }
         // width = r - l; the covered length is `length / md`.
         let width = BigRational::new(
-            big(r.n) * big(l.d) - big(l.n) * big(r.d),
-            big(l.d) * big(r.d),
+            big512(r.n) * big512(l.d) - big512(l.n) * big512(r.d),
+            big512(l.d) * big512(r.d),
         );
         total += width * length / BigRational::from_integer(md);
     }
@@ -496,7 +516,7 @@ pub fn interior_point(p: &ExactPiece, rng: &mut Rng) -> HPoint {
 
 /// The depth numerator of a support plane at a point: z = -N / (c·w).
 pub fn depth_num(pl: &Plane, p: &HPoint) -> BigInt {
-    big(pl.a as i128) * &p.x + big(pl.b as i128) * &p.y + big(pl.d) * &p.w
+    big(pl.a) * &p.x + big(pl.b) * &p.y + big256(pl.d) * &p.w
 }
 
 // ------------------------------------------------------------------------------------------------

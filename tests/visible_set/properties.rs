@@ -191,7 +191,7 @@ fn check_nearest(case: &Case) -> Result<(), Skip> {
                 }
                 // z_g < z_f  <=>  N_g·c_f > N_f·c_g  (c > 0, w > 0).
                 let ng = depth_num(&g.plane, &pt);
-                let order = (&nf * big(g.plane.c as i128)).cmp(&(&ng * big(f.plane.c as i128)));
+                let order = (&nf * big(g.plane.c)).cmp(&(&ng * big(f.plane.c)));
                 let ok = match order {
                     // f nearer.
                     Ordering::Greater => true,

@@ -123,7 +123,11 @@ fn sliver_scene() -> ScreenScene {
         let start = screen.points.len() as u32;
         screen
             .points
-            .extend(corners.iter().map(|&[x, y, z]| GridPoint { x, y, z }));
+            .extend(corners.iter().map(|&[x, y, z]| GridPoint {
+                x: x.into(),
+                y: y.into(),
+                z: z.into(),
+            }));
         let pts = &screen.points[start as usize..];
         screen.polys.push(ScreenPoly {
             face: face as u32,
