@@ -232,6 +232,35 @@ fn shrinking_gives_a_smaller_failing_fixture_that_loads_back() {
     assert!(fails(&back));
 }
 
+/// A run whose strategy is wrong reports each failing case, shrinks it and writes its fixture
+/// where asked, with how to see it and how to run the whole case again.
+#[test]
+fn a_failing_run_writes_its_shrunk_cases_and_reports_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let options = RunOptions {
+        cases: 2,
+        seed: 4,
+        points: POINTS,
+        failures: dir.path().join("failures"),
+    };
+    let r = sightline::stress::run_family(Family::Touching, &options, &DropsAPiece, &mut || {});
+    assert_eq!(r.failed.len(), 2, "{r:?}");
+    let report = sightline::stress::format_report(std::slice::from_ref(&r));
+    for f in &r.failed {
+        let obj = f.fixture.as_ref().unwrap();
+        assert!(obj.starts_with(&options.failures) && obj.with_extension("cam").exists());
+        assert!(f.faces.1 <= f.faces.0);
+        assert!(report.contains(&format!("FAILED {}", f.label)), "{report}");
+        assert!(report.contains(&obj.display().to_string()), "{report}");
+        let text = std::fs::read_to_string(obj).unwrap();
+        assert!(text.contains("sightline render"), "{text}");
+        assert!(
+            text.contains("sightline stress --family touching --seed 4"),
+            "{text}"
+        );
+    }
+}
+
 /// The same options give the same report, times aside.
 #[test]
 fn a_run_is_deterministic() {

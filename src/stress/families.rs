@@ -54,6 +54,8 @@ pub struct Case {
     pub camera: Camera,
     /// The seed of its sample points.
     pub stream: u64,
+    /// The family, seed and index it was generated from (`None` for a loaded scene).
+    pub origin: Option<(Family, u64, u64)>,
 }
 
 impl Case {
@@ -108,6 +110,7 @@ impl Case {
                 .collect(),
             camera,
             stream,
+            origin: None,
         }
     }
 }
@@ -205,6 +208,7 @@ impl Family {
             faces,
             camera,
             stream: Rng::of(&[seed, self as u64, index, 1]).next_u64(),
+            origin: Some((self, seed, index)),
         }
     }
 }

@@ -51,11 +51,6 @@ impl Point {
         }
     }
 
-    /// The point of two finite f64 values, exactly.
-    pub fn of_f64(x: f64, y: f64) -> Point {
-        Point::of(&rational(x), &rational(y))
-    }
-
     /// Its coordinates as rationals.
     pub fn rationals(&self) -> [BigRational; 2] {
         [
@@ -254,11 +249,6 @@ impl Plane {
     pub fn depth_value(&self, p: &Point) -> BigInt {
         let [a, b, _, d] = &self.coefficients;
         a * &p.x + b * &p.y + d * &p.w
-    }
-
-    /// The depth at p, exactly.
-    pub fn depth(&self, p: &Point) -> BigRational {
-        -BigRational::new(self.depth_value(p), &self.coefficients[2] * &p.w)
     }
 
     /// Depth order at p: `Less` when `self` is nearer than `other`.

@@ -118,8 +118,11 @@ pub struct FamilyReport {
     pub cases: u64,
     /// Points over all its cases.
     pub tally: Tally,
-    /// Kernel fallbacks over all its cases.
+    /// Kernel fallbacks over all its cases (the thread's counter around projection and the
+    /// visible set).
     pub fallbacks: u64,
+    /// The fallbacks the strategy reported (its `exact_fallbacks` stat) over all its cases.
+    pub strategy_fallbacks: u64,
     /// The most fallbacks of one case.
     pub max_fallbacks: u64,
     /// Seconds projecting and computing visible sets.
@@ -128,6 +131,45 @@ pub struct FamilyReport {
     pub seconds: f64,
     /// The failing cases.
     pub failed: Vec<FailedCase>,
+}
+
+impl FamilyReport {
+    /// No case yet.
+    fn new(family: Family) -> Self {
+        FamilyReport {
+            family,
+            cases: 0,
+            tally: Tally::default(),
+            fallbacks: 0,
+            strategy_fallbacks: 0,
+            max_fallbacks: 0,
+            engine_seconds: 0.0,
+            seconds: 0.0,
+            failed: Vec::new(),
+        }
+    }
+
+    /// Counts one more case (its failure, if any, is added by the caller, with its fixture).
+    fn add_case(&mut self, o: &CaseOutcome) {
+        self.cases += 1;
+        self.tally.add(&o.checked.tally);
+        self.fallbacks += o.fallbacks;
+        self.strategy_fallbacks += o.strategy_fallbacks;
+        self.max_fallbacks = self.max_fallbacks.max(o.fallbacks);
+        self.engine_seconds += o.engine_seconds;
+    }
+
+    /// Adds another report's counts, times and failures.
+    fn merge(&mut self, o: &FamilyReport) {
+        self.cases += o.cases;
+        self.tally.add(&o.tally);
+        self.fallbacks += o.fallbacks;
+        self.strategy_fallbacks += o.strategy_fallbacks;
+        self.max_fallbacks = self.max_fallbacks.max(o.max_fallbacks);
+        self.engine_seconds += o.engine_seconds;
+        self.seconds += o.seconds;
+        self.failed.extend(o.failed.iter().cloned());
+    }
 }
 
 /// Runs `options.cases` cases of `family` with `strategy`; `tick` is called after each case.
@@ -139,23 +181,11 @@ pub fn run_family(
     tick: &mut dyn FnMut(),
 ) -> FamilyReport {
     let start = std::time::Instant::now();
-    let mut r = FamilyReport {
-        family,
-        cases: options.cases,
-        tally: Tally::default(),
-        fallbacks: 0,
-        max_fallbacks: 0,
-        engine_seconds: 0.0,
-        seconds: 0.0,
-        failed: Vec::new(),
-    };
+    let mut r = FamilyReport::new(family);
     for index in 0..options.cases {
         let case = family.case(options.seed, index);
         let outcome = check_case(&case, strategy, options.points);
-        r.tally.add(&outcome.checked.tally);
-        r.fallbacks += outcome.fallbacks;
-        r.max_fallbacks = r.max_fallbacks.max(outcome.fallbacks);
-        r.engine_seconds += outcome.engine_seconds;
+        r.add_case(&outcome);
         if outcome.failed() {
             r.failed.push(shrink_and_write(
                 &case,
@@ -182,11 +212,18 @@ fn shrink_and_write(
     let fails = |c: &Case| check_case(c, strategy, points).failed();
     let small = shrink::shrink(case, &fails);
     let mut note = format!(
-        "{} faces shrunk to {}; reproduce: sightline stress --family {} (see the label's seed and case)\n",
+        "{} faces shrunk to {}; see it: sightline render NAME.obj --cam NAME.cam -o NAME.svg\n",
         case.faces.len(),
         small.faces.len(),
-        case.label.split(' ').next().unwrap_or("all"),
     );
+    if let Some((family, seed, index)) = case.origin {
+        let _ = writeln!(
+            note,
+            "the whole case is the last of: sightline stress --family {} --seed {seed} --cases {} --points {points}",
+            family.name(),
+            index + 1
+        );
+    }
     for f in &outcome.checked.failures {
         let _ = writeln!(
             note,
@@ -222,50 +259,65 @@ pub fn run(families: &[Family], options: &RunOptions, report: Option<Report>) ->
     reports
 }
 
+/// A table's columns: names and widths.
+type Columns = [(&'static str, usize)];
+
+/// One line of a table: the first cell left-aligned to its width, the others right-aligned,
+/// then `tail`.
+fn table_row(s: &mut String, columns: &Columns, cells: &[String], tail: &str) {
+    for (k, ((_, width), cell)) in columns.iter().zip(cells).enumerate() {
+        let _ = match k {
+            0 => write!(s, "{cell:<width$}"),
+            _ => write!(s, " {cell:>width$}"),
+        };
+    }
+    let _ = writeln!(s, "{tail}");
+}
+
+/// A table's header line.
+fn table_header(s: &mut String, columns: &Columns, tail: &str) {
+    let names: Vec<String> = columns.iter().map(|(n, _)| n.to_string()).collect();
+    table_row(s, columns, &names, tail);
+}
+
+const FAMILY_COLUMNS: [(&str, usize); 12] = [
+    ("family", 12),
+    ("cases", 8),
+    ("failed", 7),
+    ("points", 10),
+    ("in band", 8),
+    ("wrong", 9),
+    ("fallbacks", 10),
+    ("fb/case", 9),
+    ("fb max", 7),
+    ("time s", 9),
+    ("ms/case", 9),
+    ("engine ms", 10),
+];
+
 /// The report of a run: one line per family, a total, then the failing cases and their
 /// fixtures.
 pub fn format_report(reports: &[FamilyReport]) -> String {
     let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "{:<12} {:>8} {:>7} {:>10} {:>8} {:>9} {:>10} {:>9} {:>9} {:>9}  scale",
-        "family",
-        "cases",
-        "failed",
-        "points",
-        "in band",
-        "wrong",
-        "fallbacks",
-        "fb/case",
-        "time s",
-        "ms/case"
-    );
-    let mut total = FamilyReport {
-        family: Family::Grazing,
-        cases: 0,
-        tally: Tally::default(),
-        fallbacks: 0,
-        max_fallbacks: 0,
-        engine_seconds: 0.0,
-        seconds: 0.0,
-        failed: Vec::new(),
-    };
+    table_header(&mut s, &FAMILY_COLUMNS, "  scale");
+    let mut total = FamilyReport::new(Family::Grazing);
     let line = |s: &mut String, name: &str, r: &FamilyReport, scale: &str| {
         let per = |v: f64| v / r.cases.max(1) as f64;
-        let _ = writeln!(
-            s,
-            "{:<12} {:>8} {:>7} {:>10} {:>8} {:>9} {:>10} {:>9.2} {:>9.2} {:>9.2}  {scale}",
-            name,
-            r.cases,
-            r.failed.len(),
-            r.tally.points,
-            r.tally.in_band,
-            r.tally.failures(),
-            r.fallbacks,
-            per(r.fallbacks as f64),
-            r.seconds,
-            per(r.seconds * 1e3),
-        );
+        let cells = [
+            name.to_string(),
+            r.cases.to_string(),
+            r.failed.len().to_string(),
+            r.tally.points.to_string(),
+            r.tally.in_band.to_string(),
+            r.tally.failures().to_string(),
+            r.fallbacks.to_string(),
+            format!("{:.2}", per(r.fallbacks as f64)),
+            r.max_fallbacks.to_string(),
+            format!("{:.2}", r.seconds),
+            format!("{:.2}", per(r.seconds * 1e3)),
+            format!("{:.2}", per(r.engine_seconds * 1e3)),
+        ];
+        table_row(s, &FAMILY_COLUMNS, &cells, &format!("  {scale}"));
     };
     for r in reports {
         let (lo, hi, what) = r.family.range();
@@ -275,11 +327,7 @@ pub fn format_report(reports: &[FamilyReport]) -> String {
             r,
             &format!("{lo:e}..{hi:e} ({what})"),
         );
-        total.cases += r.cases;
-        total.tally.add(&r.tally);
-        total.fallbacks += r.fallbacks;
-        total.seconds += r.seconds;
-        total.failed.extend(r.failed.iter().cloned());
+        total.merge(r);
     }
     if reports.len() > 1 {
         line(&mut s, "all", &total, "");
@@ -289,6 +337,11 @@ pub fn format_report(reports: &[FamilyReport]) -> String {
         s,
         "failures by kind: overlap {}, coverage {}, wrong polygon {}; in the band and disagreeing: {}; on a piece boundary: {}",
         t.overlaps, t.coverage, t.wrong, t.excused, t.on_piece_boundary
+    );
+    let _ = writeln!(
+        s,
+        "fallbacks: {} counted around projection and visible set, {} reported by the strategy",
+        total.fallbacks, total.strategy_fallbacks
     );
     for f in &total.failed {
         let _ = writeln!(
@@ -329,39 +382,40 @@ pub fn measure_all(points: usize, seed: u64, report: Option<Report>) -> Vec<worl
     out
 }
 
-/// The report of the measured cases: per case, the wrong fraction outside the band.
+const MEASURED_COLUMNS: [(&str, usize); 11] = [
+    ("case", 48),
+    ("samples", 8),
+    ("wrong", 8),
+    ("in band", 8),
+    ("wrong %", 10),
+    ("rho_xy", 10),
+    ("rho_z", 10),
+    ("grid xy", 10),
+    ("grid z", 9),
+    ("fallbacks", 10),
+    ("time s", 7),
+];
+
+/// The report of the measured cases: per case, the wrong fraction outside the band, the band's
+/// roundings, the kernel's grid rounding of the same vertices, fallbacks and time.
 pub fn format_measurements(ms: &[world::Measurement]) -> String {
     let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "{:<48} {:>8} {:>8} {:>8} {:>10} {:>10} {:>10} {:>10} {:>9} {:>7}",
-        "case",
-        "samples",
-        "wrong",
-        "in band",
-        "wrong %",
-        "rho_xy",
-        "rho_z",
-        "grid xy",
-        "grid z",
-        "time s"
-    );
+    table_header(&mut s, &MEASURED_COLUMNS, "");
     for m in ms {
-        let _ = writeln!(
-            s,
-            "{:<48} {:>8} {:>8} {:>8} {:>10.4} {:>10.2e} {:>10.2e} {:>10.2e} {:>9.2e} {:>9} {:>7.2}",
-            m.name,
-            m.samples,
-            m.wrong,
-            m.in_band,
-            100.0 * m.wrong_fraction(),
-            m.band.rho_xy,
-            m.band.rho_z,
-            m.grid_rounding[0],
-            m.grid_rounding[1],
-            m.fallbacks,
-            m.seconds
-        );
+        let cells = [
+            m.name.clone(),
+            m.samples.to_string(),
+            m.wrong.to_string(),
+            m.in_band.to_string(),
+            format!("{:.4}", 100.0 * m.wrong_fraction()),
+            format!("{:.2e}", m.band.rho_xy),
+            format!("{:.2e}", m.band.rho_z),
+            format!("{:.2e}", m.grid_rounding[0]),
+            format!("{:.2e}", m.grid_rounding[1]),
+            m.fallbacks.to_string(),
+            format!("{:.2}", m.seconds),
+        ];
+        table_row(&mut s, &MEASURED_COLUMNS, &cells, "");
     }
     s
 }
