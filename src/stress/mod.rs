@@ -8,7 +8,7 @@
 //! - [`families`]: the generators, a case from (family, seed, index);
 //! - [`kernel`]: the one adapter reading the kernel's types into big integers;
 //! - [`geometry`]: exact points, lines, planes, polygons, distances;
-//! - [`reference`]: the nearest polygon at a point on the kernel's grid, and the band;
+//! - [`reference`](mod@reference): the nearest polygon at a point on the kernel's grid, and the band;
 //! - [`check`]: sample points and count failures; [`shrink`]: smaller failing cases, fixtures;
 //! - [`world`]: the measured cases and the world reference;
 //! - [`rng`]: the deterministic random numbers.

@@ -195,9 +195,9 @@ pub struct Measurement {
     pub wrong: u64,
     /// The band used.
     pub band: Band,
-    /// The kernel's own rounding, as the brief first asked to measure it: the largest
-    /// difference between the kernel's grid coordinates (in NDC) and the exact NDC of the
-    /// vertices, (x and y, z).
+    /// The kernel's own rounding of the same vertices: the largest difference between its grid
+    /// coordinates (in NDC) and their exact NDC, (x and y, z). Reported, not used by the band:
+    /// on a coarse grid it would widen the band over the very errors measured here.
     pub grid_rounding: [f64; 2],
     /// Kernel fallbacks while projecting and computing the visible set.
     pub fallbacks: u64,
@@ -338,7 +338,7 @@ impl Band {
             return true;
         }
         let Some(n) = n else { return false };
-        let (pn, q) = (&polys[n], p.to_f64());
+        let pn = &polys[n];
         let gn = pn.plane.gradient();
         containing.iter().any(|&g| {
             let pg = &polys[g];
