@@ -69,4 +69,5 @@ pub mod raster;
 pub mod render;
 pub mod report;
 pub mod sheet;
+pub mod stress;
 pub mod visibility;

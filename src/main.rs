@@ -103,6 +103,11 @@ enum Command {
     /// at a standard scale, with border and title block, as SVG in millimetres.
     #[command(after_help = SHEET_EXAMPLES)]
     Sheet(SheetArgs),
+    /// Check the exact visible set on generated hard scenes (grazing faces, near-parallel
+    /// stacks, deep perspective, far offsets, tiny scales, ...) against a slow big-rational
+    /// reference at random points; or measure the issue's cases against a world reference.
+    #[command(after_help = STRESS_EXAMPLES)]
+    Stress(StressArgs),
 }
 
 #[derive(Args)]
@@ -376,6 +381,35 @@ struct SheetArgs {
     hidden: HiddenArg,
 }
 
+const STRESS_EXAMPLES: &str = "\
+Examples:
+  sightline stress --family grazing --cases 100 --seed 1
+  sightline stress --family all --cases 1000000 --seed 1       (a long run)
+  sightline stress --family measured                           (issue 11's cases, world reference)
+
+Families: grazing, stacks, decals, far-offsets, tiny, t-junctions, needles, fans, edge-on,
+touching, cyclic. A failing case is shrunk and written as OBJ + .cam into --failures; the exit
+status is 1 when any case fails.";
+
+#[derive(Args)]
+struct StressArgs {
+    /// A family, all of them, or measured (the issue's cases against a world reference).
+    #[arg(long, value_parser = sightline::stress::Selection::parse, default_value = "all")]
+    family: sightline::stress::Selection,
+    /// Cases per family.
+    #[arg(long, default_value_t = 10, value_parser = parse_count, allow_negative_numbers = true)]
+    cases: usize,
+    /// The run's seed: the same seed gives the same cases and the same report (times aside).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Where shrunk failing cases are written (OBJ + .cam).
+    #[arg(long, value_name = "DIR", default_value = "stress-failures")]
+    failures: PathBuf,
+    /// Sample points per case (default 256; measured: pixel centres per case, default all).
+    #[arg(long, value_name = "K", value_parser = parse_count, allow_negative_numbers = true)]
+    points: Option<usize>,
+}
+
 /// `--views` of `sheet`.
 #[derive(Clone, Debug)]
 struct SheetViews(Vec<NamedView>);
@@ -470,6 +504,7 @@ fn main() -> ExitCode {
         Command::Bench(a) => bench(a),
         Command::Lines(a) => lines(a),
         Command::Sheet(a) => sheet_command(a),
+        Command::Stress(a) => stress(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -928,6 +963,35 @@ fn bench_lines(
         lines.drawing.strokes.len(),
         lines.stats.paths_minimum
     );
+}
+
+fn stress(a: StressArgs) -> sightline::Result<()> {
+    use sightline::stress::{self, RunOptions, Selection};
+    if a.family == Selection::Measured {
+        let points = a.points.unwrap_or(usize::MAX);
+        let ms = with_bars(|report| stress::measure_all(points, a.seed, report));
+        print!("{}", stress::format_measurements(&ms));
+        return Ok(());
+    }
+    let options = RunOptions {
+        cases: a.cases as u64,
+        seed: a.seed,
+        points: a.points.unwrap_or(stress::DEFAULT_POINTS),
+        failures: a.failures,
+    };
+    let reports = with_bars(|report| stress::run(&a.family.families(), &options, report));
+    print!("{}", stress::format_report(&reports));
+    let failed: usize = reports.iter().map(|r| r.failed.len()).sum();
+    if failed > 0 {
+        eprintln!(
+            "error: {failed} case(s) failed; shrunk fixtures in {}",
+            options.failures.display()
+        );
+        use std::io::Write as _;
+        let _ = std::io::stdout().flush();
+        std::process::exit(1);
+    }
+    Ok(())
 }
 
 const LINES_EXAMPLES: &str = "\
