@@ -699,13 +699,14 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             t_method.as_secs_f64()
         );
         eprintln!(
-            "faces {} -> on screen {} (frustum culled {}, back faces culled {}, clipped {}, degenerate after snap {})",
+            "faces {} -> on screen {} (frustum culled {}, back faces culled {}, clipped {}, degenerate after snap {}, split off their plane by the snap {})",
             s.faces,
             s.visible_polys,
             s.frustum_culled,
             s.backface_culled,
             s.clipped,
-            s.degenerate_after_snap
+            s.degenerate_after_snap,
+            s.split_nonplanar
         );
         eprintln!("{}", rendered.detail);
     }

@@ -98,13 +98,14 @@ impl fmt::Display for SceneReport<'_> {
         )?;
         writeln!(
             o,
-            "culling: {} frustum culled, {} back faces culled ({} meshes cullable, {} cut by the near plane), {} clipped, {} degenerate after snapping",
+            "culling: {} frustum culled, {} back faces culled ({} meshes cullable, {} cut by the near plane), {} clipped, {} degenerate after snapping, {} split into triangles (snapped corners off their plane)",
             st.frustum_culled,
             st.backface_culled,
             st.culled_meshes,
             st.meshes_cut_by_near,
             st.clipped,
-            st.degenerate_after_snap
+            st.degenerate_after_snap,
+            st.split_nonplanar
         )?;
         writeln!(o, "on screen: {} polygons", st.visible_polys)?;
         writeln!(o, "stages needed:")?;

@@ -559,12 +559,12 @@ fn point_of(l: &Line, m: &Line) -> [f64; 3] {
 }
 
 /// Where two face-edge lines cross, when that is a grid point, given the crossing in f64 with
-/// its error bound ([`point_of`]). When the bound is below one half, the only grid point the
-/// crossing can be is the rounded f64 point, and exact i128 signs check it; otherwise (an
-/// ill-conditioned crossing) Cramer's rule decides in 256-bit integers.
+/// its error bound ([`point_of`]). The rounded f64 point is tried first with exact i128 signs
+/// (a crossing at a shared mesh vertex lands there); when the bound is below one half no other
+/// grid point is possible. Otherwise Cramer's rule decides in 256-bit integers, without a
+/// division: see [`exact_quotient`].
 fn grid_crossing(l: &Line, m: &Line, [x, y, e]: [f64; 3]) -> Option<[i64; 2]> {
     use bnum::cast::As;
-    use bnum::types::I256;
     let (Line::Edge(p), Line::Edge(q)) = (l, m) else {
         return None;
     };
@@ -572,14 +572,52 @@ fn grid_crossing(l: &Line, m: &Line, [x, y, e]: [f64; 3]) -> Option<[i64; 2]> {
         l.sign_at_grid(x, y) == Ordering::Equal && m.sign_at_grid(x, y) == Ordering::Equal
     };
     let limit = super::GRID_MAX as f64;
-    if e < 0.5 {
-        let (x, y) = (x.round(), y.round());
-        if !(x.abs() <= limit && y.abs() <= limit) {
-            return None;
-        }
-        let (x, y) = (x as i64, y as i64);
-        return on_both(x, y).then_some([x, y]);
+    let (rx, ry) = (x.round(), y.round());
+    if !(rx.abs() <= limit && ry.abs() <= limit) {
+        return exact_grid_crossing(p, q).filter(|&[x, y]| on_both(x, y));
     }
+    let (gx, gy) = (rx as i64, ry as i64);
+    if on_both(gx, gy) {
+        return Some([gx, gy]);
+    }
+    if e < 0.5 {
+        return None;
+    }
+    // The crossing is (gx + dx, gy + dy) with `a·dx + b·dy = -v` for each line, v its exact
+    // value at (gx, gy) (i128: below 2^110). Solved in f64 with a generous bound (conversions,
+    // products, sum and division each within U, taken 8 times): when no integer lies within
+    // the bound of dx or dy the crossing is no grid point; when the bound is below one half
+    // only the rounded offsets can be one, checked exactly.
+    let value = |p: &Plane| p.a * gx as i128 + p.b * gy as i128 + p.d.as_::<i128>();
+    let (v1, v2) = (value(p), value(q));
+    let den = super::i128_to_f64(p.a * q.b - q.a * p.b);
+    if den == 0.0 {
+        return None;
+    }
+    let solve = |n1: f64, n2: f64| {
+        let terms = (-super::i128_to_f64(v1) * n2, super::i128_to_f64(v2) * n1);
+        let d = (terms.0 + terms.1) / den;
+        let bound = 8.0 * super::U * ((terms.0.abs() + terms.1.abs()) / den.abs() + d.abs());
+        (d, bound)
+    };
+    let (dx, ex) = solve(super::i128_to_f64(p.b), super::i128_to_f64(q.b));
+    let (dy, ey) = solve(-super::i128_to_f64(p.a), -super::i128_to_f64(q.a));
+    if (dx - dx.round()).abs() > ex || (dy - dy.round()).abs() > ey {
+        return None;
+    }
+    if ex < 0.5 && ey < 0.5 {
+        let (cx, cy) = (gx + dx.round() as i64, gy + dy.round() as i64);
+        return (cx.abs() <= super::GRID_MAX && cy.abs() <= super::GRID_MAX && on_both(cx, cy))
+            .then_some([cx, cy]);
+    }
+    exact_grid_crossing(p, q).filter(|&[x, y]| on_both(x, y))
+}
+
+/// Where two edge planes' lines cross when that is a grid point, by Cramer's rule in 256-bit
+/// integers, without a division: see [`exact_quotient`].
+fn exact_grid_crossing(p: &Plane, q: &Plane) -> Option<[i64; 2]> {
+    use bnum::cast::As;
+    use bnum::types::I256;
     // Edge coefficients: a, b below 2^55, d below 2^108.
     let w = |v: i128| -> I256 { v.as_() };
     let den = w(p.a * q.b - q.a * p.b);
@@ -588,12 +626,39 @@ fn grid_crossing(l: &Line, m: &Line, [x, y, e]: [f64; 3]) -> Option<[i64; 2]> {
     }
     let nx = w(p.b) * q.d - w(q.b) * p.d;
     let ny = w(q.a) * p.d - w(p.a) * q.d;
-    if nx % den != w(0) || ny % den != w(0) {
+    Some([exact_quotient(nx, den)?, exact_quotient(ny, den)?])
+}
+
+/// `n / den` when it is an integer within the grid, exactly. The quotient X is estimated in f64
+/// (two correctly rounded conversions and a division: relative error below 3·U, so within 3
+/// units for |X| <= 2^53), the remainder `r = n - den·q` of the rounded estimate q taken
+/// exactly in 256 bits, and `r / den = X - q`, at most 3.5, estimated the same way (now within
+/// 2^-50) and checked: two multiplications instead of a 256-bit division. Nothing is returned
+/// that is not exact; every integer X within the grid is found.
+fn exact_quotient(n: bnum::types::I256, den: bnum::types::I256) -> Option<i64> {
+    use bnum::cast::As;
+    use bnum::types::I256;
+    let limit = 2.0 * super::GRID_MAX as f64;
+    let approx = |n: I256| super::i256_to_f64(n) / super::i256_to_f64(den);
+    let q = approx(n).round();
+    if q.is_nan() || q.abs() > limit {
         return None;
     }
-    let (x, y) = (nx / den, ny / den);
-    let fits = |v: I256| v.abs() <= w(super::GRID_MAX as i128);
-    (fits(x) && fits(y)).then(|| [x.as_(), y.as_()])
+    let q = q as i64;
+    let r = n - den * q.as_::<I256>();
+    if r == 0i64.as_::<I256>() {
+        return (q.abs() <= super::GRID_MAX).then_some(q);
+    }
+    // X = q + r / den; when X is an integer within the grid, |r / den| <= 3.5 and its estimate
+    // rounds to it (a larger k means X is outside the grid or q was far off).
+    let k = approx(r).round();
+    if k.is_nan() || k.abs() > 64.0 {
+        return None;
+    }
+    let k = k as i64;
+    (r == den * k.as_::<I256>())
+        .then(|| q + k)
+        .filter(|v| v.abs() <= super::GRID_MAX)
 }
 
 /// Do two convex pieces have disjoint interiors? Exact: some edge line of one has the other
@@ -625,14 +690,14 @@ pub fn same_plane(s: &Plane, q: &Plane) -> bool {
     }
     // Each product of two rounded coefficients errs by at most 3·U of its magnitude; a
     // difference larger than that sum (doubled) is not zero.
-    let (sc, qc) = (s.c as f64, q.c as f64);
+    let (sc, qc) = (super::i128_to_f64(s.c), super::i128_to_f64(q.c));
     let differs = |sv: f64, qv: f64| {
         let (l, r) = (sv * qc, qv * sc);
         (l - r).abs() > 8.0 * super::U * (l.abs() + r.abs())
     };
-    if differs(s.a as f64, q.a as f64)
-        || differs(s.b as f64, q.b as f64)
-        || differs(s.d.as_(), q.d.as_())
+    if differs(super::i128_to_f64(s.a), super::i128_to_f64(q.a))
+        || differs(super::i128_to_f64(s.b), super::i128_to_f64(q.b))
+        || differs(super::i256_to_f64(s.d), super::i256_to_f64(q.d))
     {
         return false;
     }
@@ -785,6 +850,42 @@ mod tests {
 
     fn gp(x: i64, y: i64, z: i64) -> GridPoint {
         GridPoint { x, y, z }
+    }
+
+    /// The division-free quotient agrees with 256-bit division: integers anywhere in the grid
+    /// (its ends included) are found, non-integers and quotients off the grid are refused.
+    #[test]
+    fn exact_quotient_agrees_with_division() {
+        use bnum::cast::As;
+        use bnum::types::I256;
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let g = crate::exact::GRID_MAX;
+        for case in 0..30_000 {
+            let den_bits = 1 + next() % 110;
+            let den: I256 =
+                ((next() as i128) << 64 | next() as i128).as_::<I256>() >> (128 - den_bits as u32);
+            if den == 0i64.as_::<I256>() {
+                continue;
+            }
+            let x: i64 = match case % 4 {
+                0 => g - (next() % 4) as i64,
+                1 => -g + (next() % 4) as i64,
+                _ => (next() as i64) >> (next() % 64),
+            };
+            let off = [0i64, 0, 1, -1, 7][case % 5];
+            let n = den * x.as_::<I256>() + off.as_::<I256>();
+            let want = (n % den == 0i64.as_::<I256>())
+                .then(|| n / den)
+                .filter(|q| q.abs() <= g.as_::<I256>())
+                .map(|q| q.as_::<i64>());
+            assert_eq!(exact_quotient(n, den), want, "n {n} den {den}");
+        }
     }
 
     fn area(v: &[[f64; 2]]) -> f64 {

@@ -33,7 +33,7 @@
 //! `|det| > 32·U·perm(M)`, the f64 sign is the exact sign; otherwise the 768-bit computation
 //! decides. Each fallback is counted ([`fallback_count`]).
 
-use super::{GridPoint, Plane, U, w256};
+use super::{GridPoint, Plane, U, i128_to_f64, i256_to_f64, w256};
 use bnum::cast::As;
 use bnum::types::{I256, I512};
 use std::cell::Cell;
@@ -120,18 +120,22 @@ impl Line {
         match self {
             Line::Edge(p) => {
                 debug_assert_eq!(p.c, 0);
-                [entry(p.a as f64), entry(p.b as f64), entry(p.d.as_())]
+                [
+                    entry(i128_to_f64(p.a)),
+                    entry(i128_to_f64(p.b)),
+                    entry(i256_to_f64(p.d)),
+                ]
             }
             Line::Cut(p, q) => {
-                let (pc, qc) = (p.c as f64, q.c as f64);
+                let (pc, qc) = (i128_to_f64(p.c), i128_to_f64(q.c));
                 let combine = |pv: f64, qv: f64| Entry {
                     value: qc * pv - pc * qv,
                     magnitude: (qc * pv).abs() + (pc * qv).abs(),
                 };
                 [
-                    combine(p.a as f64, q.a as f64),
-                    combine(p.b as f64, q.b as f64),
-                    combine(p.d.as_(), q.d.as_()),
+                    combine(i128_to_f64(p.a), i128_to_f64(q.a)),
+                    combine(i128_to_f64(p.b), i128_to_f64(q.b)),
+                    combine(i256_to_f64(p.d), i256_to_f64(q.d)),
                 ]
             }
         }
@@ -233,10 +237,10 @@ fn zero() -> Wide {
 
 fn plane_filtered(p: &Plane) -> [Entry; 4] {
     [
-        entry(p.a as f64),
-        entry(p.b as f64),
-        entry(p.c as f64),
-        entry(p.d.as_()),
+        entry(i128_to_f64(p.a)),
+        entry(i128_to_f64(p.b)),
+        entry(i128_to_f64(p.c)),
+        entry(i256_to_f64(p.d)),
     ]
 }
 
@@ -459,7 +463,7 @@ pub fn crossing_f64(l: &Line, m: &Line) -> [f64; 2] {
     if den == zero() {
         return [f64::NAN; 2];
     }
-    let f = |v: Wide| -> f64 { v.as_() };
+    let f = |v: Wide| -> f64 { super::int_to_f64(v.to_le_bytes()) };
     [f(b0 * d1 - b1 * d0) / f(den), f(a1 * d0 - a0 * d1) / f(den)]
 }
 

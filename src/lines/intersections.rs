@@ -424,7 +424,7 @@ fn depth_range(screen: &ScreenScene, p: &ScreenPoly) -> [f64; 2] {
         pl.a as f64,
         pl.b as f64,
         pl.c as f64,
-        bnum::cast::As::as_::<f64>(pl.d),
+        crate::exact::i256_to_f64(pl.d),
     );
     let (mut lo, mut hi) = (f64::MAX, f64::MIN);
     for q in screen.corners(p) {

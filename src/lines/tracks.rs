@@ -401,7 +401,7 @@ fn normalized(l: &Line) -> Normalized {
     };
     Normalized {
         exact,
-        approx: exact.map(|v| v.as_()),
+        approx: exact.map(|v| crate::exact::int_to_f64(v.to_le_bytes())),
     }
 }
 
