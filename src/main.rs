@@ -384,7 +384,7 @@ struct SheetArgs {
 const STRESS_EXAMPLES: &str = "\
 Examples:
   sightline stress --family grazing --cases 100 --seed 1
-  sightline stress --family all --cases 1000000 --seed 1       (a long run)
+  sightline stress --family all --cases 91000 --seed 1         (a million cases: hours)
   sightline stress --family measured                           (issue 11's cases, world reference)
 
 Families: grazing, stacks, decals, far-offsets, tiny, t-junctions, needles, fans, edge-on,
