@@ -171,7 +171,7 @@ proptest! {
     #[test]
     fn line_side_random(a in any_plane(), b in any_plane(), c in any_plane(), d in any_plane(), e in any_plane(), f in any_plane()) {
         // Mix edge lines and cut lines (a cut needs two planes, one at least not vertical).
-        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::Cut(p, r) };
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::cut(p, r) };
         let (l0, l1, l2) = (line(a, b), line(c, d), line(e, f));
         prop_assert_eq!(line_side([&l0, &l1], &l2), line_reference([&l0, &l1], &l2));
     }
@@ -180,7 +180,7 @@ proptest! {
     fn line_side_through_a_common_point(
         (a, b, c, d, e, f) in point().prop_flat_map(|g| (plane_through(g), plane_through(g), plane_through(g), plane_through(g), plane_through(g), query_near(g)))
     ) {
-        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::Cut(p, r) };
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::cut(p, r) };
         let (l0, l1, l2) = (line(a, b), line(c, d), line(e, f));
         prop_assert_eq!(line_side([&l0, &l1], &l2), line_reference([&l0, &l1], &l2));
     }
@@ -188,7 +188,7 @@ proptest! {
     #[test]
     fn depth_order_random(a in any_plane(), b in any_plane(), c in any_plane(), d in any_plane(), s in any_plane(), t in any_plane()) {
         let (Some(s), Some(t)) = (support(s), support(t)) else { return Ok(()); };
-        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::Cut(p, r) };
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::cut(p, r) };
         let (l0, l1) = (line(a, b), line(c, d));
         prop_assert_eq!(depth_order_at([&l0, &l1], &s, &t), depth_reference([&l0, &l1], &s, &t));
     }
@@ -200,7 +200,7 @@ proptest! {
         // s and t both pass through g; the crossing of the lines is g's (x, y) when both lines
         // pass through g too: the depths tie exactly there.
         let (Some(s), Some(t)) = (support(s), support(t)) else { return Ok(()); };
-        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::Cut(p, r) };
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::cut(p, r) };
         let (l0, l1) = (line(a, b), line(u, s));
         prop_assert_eq!(depth_order_at([&l0, &l1], &s, &t), depth_reference([&l0, &l1], &s, &t));
     }
@@ -276,7 +276,7 @@ proptest! {
 
     #[test]
     fn point_filter_random(a in any_plane(), b in any_plane(), c in any_plane(), d in any_plane(), e in any_plane(), f in any_plane()) {
-        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::Cut(p, r) };
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::cut(p, r) };
         check_point_filter(&line(a, b), &line(c, d), &line(e, f))?;
     }
 
@@ -286,7 +286,7 @@ proptest! {
     ) {
         // The third line passes through the crossing or one unit off it: the filter must
         // abstain or be right.
-        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::Cut(p, r) };
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::cut(p, r) };
         check_point_filter(&line(a, b), &line(c, d), &line(e, f))?;
     }
 }
@@ -349,7 +349,7 @@ fn piece_sign_shortcuts_agree_with_the_reference() {
         let pieces = &visible.pieces;
         // Every line and plane the visible pieces are made of, tried at every vertex.
         let lines: Vec<Line> = pieces.iter().flat_map(|p| p.lines.clone()).collect();
-        let planes: Vec<Plane> = pieces.iter().map(|p| p.support).collect();
+        let planes: Vec<std::sync::Arc<Plane>> = pieces.iter().map(|p| p.support.clone()).collect();
         for (i, p) in pieces.iter().enumerate() {
             let n = p.lines.len();
             for k in 0..n {

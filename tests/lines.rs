@@ -149,15 +149,15 @@ fn two_crossing_tori_meet_in_closed_loops() {
             .enumerate()
             .filter(|(_, t)| t.kind == LineKind::Intersection)
             .flat_map(|(i, t)| {
-                t.extent.iter().map(move |&(a, b)| Segment {
+                t.extent.iter().map(move |(a, b)| Segment {
                     label: sightline::lines::tracks::Label {
                         visibility: Visibility::Visible,
                         kind: LineKind::Intersection,
                         qi: 0,
                     },
                     track: i as u32,
-                    at: [a, b],
-                    ends: [t.carrier.pixel(&a, &samples), t.carrier.pixel(&b, &samples)],
+                    at: [a.clone(), b.clone()],
+                    ends: [t.carrier.pixel(a, &samples), t.carrier.pixel(b, &samples)],
                 })
             })
             .collect();
@@ -284,7 +284,7 @@ fn check_visibility(scene: &Scene, camera: &Camera) -> usize {
     for s in &lines.segments {
         let track = &lines.tracks[s.track as usize];
         let line = &track.carrier.line;
-        let [a, b] = s.at.map(|at| point(line, &at));
+        let [a, b] = [0, 1].map(|k| point(line, &s.at[k]));
         for (wa, wb) in [(1, 1), (2, 1), (1, 2)] {
             let t = |u: &BigRational, v: &BigRational| (u * rat(wa) + v * rat(wb)) / rat(wa + wb);
             let p = [t(&a[0], &b[0]), t(&a[1], &b[1])];

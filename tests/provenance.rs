@@ -54,7 +54,7 @@ fn check_piece(screen: &ScreenScene, piece: &Piece, seen: &mut [usize; 4]) {
                     screen.polys[b as usize].plane,
                 );
                 assert!(
-                    *line == Line::Cut(pa, pb) || *line == Line::Cut(pb, pa),
+                    *line == Line::cut(pa, pb) || *line == Line::cut(pb, pa),
                     "{boundary:?}: {line:?}"
                 );
                 seen[2] += 1;

@@ -24,6 +24,7 @@ use super::predicates::{
 };
 use super::{GridPoint, Plane};
 use std::cmp::Ordering;
+use std::sync::Arc;
 
 /// Where a line of a piece comes from. Polygons are indices into `ScreenScene::polys`.
 ///
@@ -70,8 +71,9 @@ pub enum Boundary {
 pub struct Piece {
     /// Index of the screen polygon (face) it belongs to.
     pub poly: u32,
-    /// The support plane of that polygon: every point of the piece lies in it.
-    pub support: Plane,
+    /// The support plane of that polygon: every point of the piece lies in it. Shared by the
+    /// polygon's pieces and the cut lines made from it.
+    pub support: Arc<Plane>,
     /// Boundary lines, counter-clockwise; vertex k is where `lines[k-1]` and `lines[k]` cross.
     pub lines: Vec<Line>,
     /// Where each line comes from (`boundaries[k]` for `lines[k]`).
@@ -95,9 +97,9 @@ pub struct Piece {
 
 /// `all[k]` for each k of `run`, then `closing`: a part's per-line array, allocated once at its
 /// final size.
-fn kept_then<T: Copy>(run: &[usize], all: &[T], closing: T) -> Vec<T> {
+fn kept_then<T: Clone>(run: &[usize], all: &[T], closing: T) -> Vec<T> {
     let mut v = Vec::with_capacity(run.len() + 1);
-    v.extend(run.iter().map(|&k| all[k]));
+    v.extend(run.iter().map(|&k| all[k].clone()));
     v.push(closing);
     v
 }
@@ -171,7 +173,7 @@ impl Piece {
         let line_approx = lines.iter().map(Line::approx).collect();
         Piece {
             poly,
-            support,
+            support: Arc::new(support),
             lines,
             boundaries,
             corners,
@@ -192,6 +194,11 @@ impl Piece {
         self.lines.is_empty()
     }
 
+    /// `Cut(q, support)`: on the support plane, the sign of `q` (divided by `c_S > 0`).
+    fn cut_by(&self, q: &Arc<Plane>) -> Line {
+        Line::Cut(q.clone(), self.support.clone())
+    }
+
     /// The two lines through vertex k.
     fn vertex_lines(&self, k: usize) -> [&Line; 2] {
         let n = self.lines.len();
@@ -201,9 +208,11 @@ impl Piece {
     /// Is the point of the support plane above vertex k on plane `q`, by construction: `q` is
     /// the support plane, or one of the vertex's lines is the cut of the support plane by `q`.
     fn lifted_vertex_on(&self, k: usize, q: &Plane) -> bool {
-        *q == self.support
+        *q == *self.support
             || self.vertex_lines(k).iter().any(|own| match own {
-                Line::Cut(x, y) => (*x == self.support && y == q) || (x == q && *y == self.support),
+                Line::Cut(x, y) => {
+                    (**x == *self.support && **y == *q) || (**x == *q && **y == *self.support)
+                }
                 Line::Edge(_) => false,
             })
     }
@@ -221,24 +230,24 @@ impl Piece {
         } else {
             return None;
         };
-        (y != z).then_some([*x, *y, *z])
+        (y != z).then_some([**x, **y, **z])
     }
 
     /// The sign of plane `q` at vertex k (lifted onto the support plane). `q.c > 0`.
-    pub fn vertex_plane_sign(&self, k: usize, q: &Plane) -> Ordering {
-        self.vertex_plane_sign_with(k, q, &Line::Cut(*q, self.support).approx())
+    pub fn vertex_plane_sign(&self, k: usize, q: &Arc<Plane>) -> Ordering {
+        self.vertex_plane_sign_with(k, q, &self.cut_by(q).approx())
     }
 
     /// [`Self::vertex_plane_sign`] given `Cut(q, support)`'s f64 coefficients: on the support
     /// plane, q has the sign of that screen line (`c_S·q - c_q·S`, divided by `c_S > 0`).
-    fn vertex_plane_sign_with(&self, k: usize, q: &Plane, qa: &LineApprox) -> Ordering {
+    fn vertex_plane_sign_with(&self, k: usize, q: &Arc<Plane>, qa: &LineApprox) -> Ordering {
         // Most signs are far from zero: the cached point settles them in one dot product (at a
         // grid corner exactly, its error bound being 0).
         if let Some(s) = qa.sign_at(self.points[k]) {
             return s;
         }
         if let Some([x, y]) = self.corners[k] {
-            return Line::Cut(*q, self.support).sign_at_grid_exact(x, y);
+            return self.cut_by(q).sign_at_grid_exact(x, y);
         }
         if let Some(s) = depth_order_filtered(self.vertex_lines(k), &self.support, q) {
             return s;
@@ -260,7 +269,7 @@ impl Piece {
             .flatten()
         {
             let [[px, py], [rx, ry]] = seg;
-            let on_s = Line::Cut(*q, self.support);
+            let on_s = self.cut_by(q);
             let a = on_s.sign_at_grid(px, py);
             if a == on_s.sign_at_grid(rx, ry) {
                 return a;
@@ -339,11 +348,11 @@ impl Piece {
 
     /// Which sides of `q` (`q.c > 0`) the piece reaches, without building parts: (some vertex
     /// strictly negative, some strictly positive). Stops as soon as both are seen.
-    pub fn sides_of_plane(&self, q: &Plane) -> (bool, bool) {
+    pub fn sides_of_plane(&self, q: &Arc<Plane>) -> (bool, bool) {
         if same_plane(&self.support, q) {
             return (false, false);
         }
-        let qa = Line::Cut(*q, self.support).approx();
+        let qa = self.cut_by(q).approx();
         self.sides(|k| self.vertex_plane_sign_with(k, q, &qa))
     }
 
@@ -374,11 +383,11 @@ impl Piece {
 
     /// Splits by a support plane `q` (`q.c > 0`), the plane of polygon `by`. The negative part is
     /// the one nearer the viewer; the new line's boundary is `Cut { a: self.poly, b: by }`.
-    pub fn split_by_plane(&self, q: &Plane, by: u32) -> Split {
+    pub fn split_by_plane(&self, q: &Arc<Plane>, by: u32) -> Split {
         if same_plane(&self.support, q) {
             return Split::On;
         }
-        let qa = Line::Cut(*q, self.support).approx();
+        let qa = self.cut_by(q).approx();
         let signs: Vec<Ordering> = (0..self.len())
             .map(|k| self.vertex_plane_sign_with(k, q, &qa))
             .collect();
@@ -386,8 +395,8 @@ impl Piece {
         // negative part's inside.
         self.split_with(
             &signs,
-            Line::Cut(self.support, *q),
-            Line::Cut(*q, self.support),
+            Line::Cut(self.support.clone(), q.clone()),
+            self.cut_by(q),
             Boundary::Cut {
                 a: self.poly,
                 b: by,
@@ -406,7 +415,7 @@ impl Piece {
         let signs: Vec<Ordering> = (0..self.len())
             .map(|k| self.vertex_line_sign_with(k, l, la))
             .collect();
-        self.split_with(&signs, negate(l), *l, origin)
+        self.split_with(&signs, negate(l), l.clone(), origin)
     }
 
     /// Splits given the vertex signs; `neg_line` bounds the negative part (positive inside it),
@@ -463,14 +472,14 @@ impl Piece {
             }
         };
         let last = (run[run.len() - 1] + 1) % n;
-        let lines = kept_then(&run, &self.lines, closing);
-        let boundaries = kept_then(&run, &self.boundaries, origin);
-        let line_approx = kept_then(&run, &self.line_approx, closing.approx());
-        let segments = kept_then(&run, &self.segments, None);
         // Vertex 0 joins the closing line and the first kept edge; vertex i joins kept edges
         // i-1 and i; the last joins the last kept edge and the closing line.
         let (first_corner, first_point) = end_vertex(start, start);
         let (last_corner, last_point) = end_vertex(last, run[run.len() - 1]);
+        let line_approx = kept_then(&run, &self.line_approx, closing.approx());
+        let lines = kept_then(&run, &self.lines, closing);
+        let boundaries = kept_then(&run, &self.boundaries, origin);
+        let segments = kept_then(&run, &self.segments, None);
         let mut corners = Vec::with_capacity(lines.len());
         corners.push(first_corner);
         corners.extend(run[1..].iter().map(|&k| self.corners[k]));
@@ -481,7 +490,7 @@ impl Piece {
         points.push(last_point);
         Piece {
             poly: self.poly,
-            support: self.support,
+            support: self.support.clone(),
             lines,
             boundaries,
             corners,
@@ -675,7 +684,7 @@ pub fn separated(p: &Piece, q: &Piece) -> bool {
 pub fn negate(l: &Line) -> Line {
     match l {
         Line::Edge(p) => Line::Edge(p.negated()),
-        Line::Cut(p, q) => Line::Cut(*q, *p),
+        Line::Cut(p, q) => Line::Cut(q.clone(), p.clone()),
     }
 }
 
@@ -953,7 +962,7 @@ mod tests {
         // The square at z = 0 (tilted support through the corners), cut by the plane z = x - 50:
         // for x < 50 the square is above that plane (farther), for x > 50 below it (nearer).
         let sq = square();
-        let q = Plane::through(gp(50, 0, 0), gp(50, 100, 0), gp(0, 0, -50)).unwrap();
+        let q = Arc::new(Plane::through(gp(50, 0, 0), gp(50, 100, 0), gp(0, 0, -50)).unwrap());
         assert!(q.c > 0);
         let Split::Both(near, far) = sq.split_by_plane(&q, 7) else {
             panic!()
@@ -974,7 +983,7 @@ mod tests {
     #[test]
     fn splits_keep_each_line_with_its_boundary() {
         let sq = square();
-        let q = Plane::through(gp(50, 0, 0), gp(50, 100, 0), gp(0, 0, -50)).unwrap();
+        let q = Arc::new(Plane::through(gp(50, 0, 0), gp(50, 100, 0), gp(0, 0, -50)).unwrap());
         let Split::Both(near, far) = sq.split_by_plane(&q, 7) else {
             panic!()
         };

@@ -38,6 +38,7 @@ use bnum::cast::As;
 use bnum::types::{I256, I512};
 use std::cell::Cell;
 use std::cmp::Ordering;
+use std::sync::Arc;
 
 /// The exact path's integers: 768 bits, enough for every determinant here (module docs).
 pub type Wide = bnum::Int<96>;
@@ -57,13 +58,24 @@ fn count_fallback() {
 
 /// A line on screen: a vertical plane `a·x + b·y + d = 0` of the grid. Its positive side is its
 /// left (counter-clockwise interior, y up) for edges made by [`Plane::edge`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+///
+/// A cut holds its two planes by shared pointer: they are support planes of polygons, held once
+/// by the pieces of each polygon (`Piece::support`) and by every line cut from them, so a line
+/// is 96 bytes whatever the width of the planes' integers.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Line {
     /// An input vertical plane (`c == 0`): an edge of a face.
     Edge(Plane),
     /// The projection of the meeting line of two non-parallel input planes `P`, `Q`:
     /// `c_Q·P - c_P·Q`, which has no z term.
-    Cut(Plane, Plane),
+    Cut(Arc<Plane>, Arc<Plane>),
+}
+
+impl Line {
+    /// The cut of two planes given by value (`Line::Cut` of new shared planes).
+    pub fn cut(p: Plane, q: Plane) -> Line {
+        Line::Cut(Arc::new(p), Arc::new(q))
+    }
 }
 
 /// A line's coefficients in f64 with their error bounds, for testing many points against it:

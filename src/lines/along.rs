@@ -24,7 +24,7 @@ fn wide(v: i64) -> Wide {
 }
 
 /// A point on a carrier.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub enum At {
     /// A grid point on the carrier (x, y).
     Grid([i64; 2]),
@@ -34,7 +34,7 @@ pub enum At {
 
 /// An exact position along a carrier: an f64 value with a proven error bound, and what it
 /// takes to compute it exactly when two positions are too close for the bounds to decide.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Param<'a> {
     /// The position, within `err` of the exact one.
     approx: f64,
@@ -47,7 +47,7 @@ pub struct Param<'a> {
 impl Param<'_> {
     /// The point.
     pub fn at(&self) -> At {
-        self.at
+        self.at.clone()
     }
 
     /// `num / den` (`den > 0`), exactly.
@@ -122,7 +122,7 @@ impl Ord for Param<'_> {
 }
 
 /// A line that drawn segments lie on, with what it takes to order points along it.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Carrier {
     /// The kernel line.
     pub line: Line,
@@ -169,7 +169,7 @@ impl Carrier {
         Param {
             approx: if self.negate { -value } else { value },
             err,
-            at: *at,
+            at: at.clone(),
             carrier: self,
         }
     }

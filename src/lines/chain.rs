@@ -333,7 +333,7 @@ mod tests {
                 qi: 0,
             },
             track: 0,
-            at: [At::Grid([0, 0]); 2],
+            at: [At::Grid([0, 0]), At::Grid([0, 0])],
             ends: [a, b],
         }
     }

@@ -116,7 +116,7 @@ pub fn meetings(
         if !straddles_plane(screen, pb, &pa.plane) || !straddles_plane(screen, pa, &pb.plane) {
             return;
         }
-        let line = Line::Cut(pa.plane, pb.plane);
+        let line = Line::cut(pa.plane, pb.plane);
         match shared(pa.face, pb.face) {
             0 => {}
             1 => {
@@ -126,7 +126,7 @@ pub fn meetings(
             }
             _ => return,
         }
-        let carrier = Carrier::new(line);
+        let carrier = Carrier::new(line.clone());
         let mut extent = Vec::new();
         parts[a].get_or_insert_with(|| convex_parts(screen, pa));
         parts[b].get_or_insert_with(|| convex_parts(screen, pb));
@@ -137,7 +137,7 @@ pub fn meetings(
             };
             for part_b in parts_b {
                 if let Some(ib) = clip_to_convex(&carrier, part_b)
-                    && let Some(both) = overlap(&carrier, ia, ib)
+                    && let Some(both) = overlap(&carrier, ia.clone(), ib)
                 {
                     extent.push(both);
                 }
@@ -345,7 +345,7 @@ fn edge_on_meeting(flat: &FlatFace, b: &ScreenPoly, parts: &[Vec<Line>]) -> Opti
     // The screen line: through the two corners farthest apart along it.
     let (lo, hi) = (c.iter().min()?, c.iter().max()?);
     let line = Line::Edge(Plane::edge(*lo, *hi)?);
-    let carrier = Carrier::new(line);
+    let carrier = Carrier::new(line.clone());
     // Where b's plane crosses the face's sides in 3D, exactly.
     let sign = |p: &GridPoint| b.plane.sign_at(*p);
     let signs: Vec<Ordering> = c.iter().map(sign).collect();
@@ -362,17 +362,17 @@ fn edge_on_meeting(flat: &FlatFace, b: &ScreenPoly, parts: &[Vec<Line>]) -> Opti
             if (c[i].x, c[i].y) == (c[j].x, c[j].y) {
                 crossings.push(At::Grid([c[i].x, c[i].y]));
             } else {
-                crossings.push(At::Cross(Line::Cut(b.plane, plane_along(c[i], c[j]))));
+                crossings.push(At::Cross(Line::cut(b.plane, plane_along(c[i], c[j]))));
             }
         }
     }
     // A convex face is crossed at exactly two points.
-    let [p, q] = crossings[..] else { return None };
-    let [p, q] = carrier.ordered(p, q)?;
+    let [p, q] = &crossings[..] else { return None };
+    let [p, q] = carrier.ordered(p.clone(), q.clone())?;
     let inside = (p.at(), q.at());
     let extent: Vec<(At, At)> = parts
         .iter()
-        .filter_map(|part| overlap(&carrier, inside, clip_to_convex(&carrier, part)?))
+        .filter_map(|part| overlap(&carrier, inside.clone(), clip_to_convex(&carrier, part)?))
         .collect();
     (!extent.is_empty()).then(|| Meeting {
         faces: [flat.face.min(b.face), flat.face.max(b.face)],

@@ -119,7 +119,7 @@ pub struct TrackIndex<'a> {
 fn vertex_at(piece: &Piece, k: usize, other_line: usize) -> At {
     match piece.corners[k] {
         Some(c) => At::Grid(c),
-        None => At::Cross(piece.lines[other_line]),
+        None => At::Cross(piece.lines[other_line].clone()),
     }
 }
 
@@ -139,16 +139,16 @@ pub fn mark_seen(screen: &ScreenScene, pieces: &[Piece], index: &TrackIndex, tra
             match piece.boundaries[k] {
                 Boundary::Outline { poly: p, side } if p == piece.poly => {
                     // Along the run of collinear outline sides from `side`.
-                    let line = piece.lines[k];
+                    let line = &piece.lines[k];
                     let mut j = side as usize;
                     loop {
                         let t = index.of_side[poly.start as usize + j];
                         if t != u32::MAX {
-                            tracks[t as usize].seen[0].push(span);
+                            tracks[t as usize].seen[0].push(span.clone());
                         }
                         let next = (j + 1) % m;
                         let after = corners[(next + 1) % m];
-                        if next == side as usize || !on_line(&line, after) {
+                        if next == side as usize || !on_line(line, after) {
                             break;
                         }
                         j = next;
@@ -174,16 +174,16 @@ pub fn mark_seen(screen: &ScreenScene, pieces: &[Piece], index: &TrackIndex, tra
                         if t == u32::MAX {
                             continue;
                         }
-                        let edge = tracks[t as usize].carrier.line;
-                        let along = match (&piece.lines[k], &edge) {
+                        let edge = &tracks[t as usize].carrier.line;
+                        let along = match (&piece.lines[k], edge) {
                             (Line::Edge(p), Line::Edge(q)) => same_edge_line(p, q),
                             _ => {
-                                piece.vertex_line_sign(k, &edge) == Ordering::Equal
-                                    && piece.vertex_line_sign((k + 1) % n, &edge) == Ordering::Equal
+                                piece.vertex_line_sign(k, edge) == Ordering::Equal
+                                    && piece.vertex_line_sign((k + 1) % n, edge) == Ordering::Equal
                             }
                         };
                         if along {
-                            tracks[t as usize].seen[0].push(span);
+                            tracks[t as usize].seen[0].push(span.clone());
                         }
                     }
                 }
@@ -218,7 +218,7 @@ pub struct Label {
 }
 
 /// A drawn segment.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Segment {
     /// What it is.
     pub label: Label,
@@ -252,20 +252,20 @@ pub fn clip_to_convex(carrier: &Carrier, lines: &[Line]) -> Option<(At, At)> {
 
 /// [`clip_to_convex`], a carrier along one of the lines counting as inside when `closed`.
 fn clip_to_region(carrier: &Carrier, lines: &[Line], closed: bool) -> Option<(At, At)> {
-    let mut lo: Option<(Param, Line)> = None;
-    let mut hi: Option<(Param, Line)> = None;
+    let mut lo: Option<(Param, &Line)> = None;
+    let mut hi: Option<(Param, &Line)> = None;
     for m in lines {
         match carrier.heading(m) {
             Ordering::Greater => {
-                let p = carrier.param(&At::Cross(*m));
+                let p = carrier.param(&At::Cross(m.clone()));
                 if lo.as_ref().is_none_or(|(q, _)| p > *q) {
-                    lo = Some((p, *m));
+                    lo = Some((p, m));
                 }
             }
             Ordering::Less => {
-                let p = carrier.param(&At::Cross(*m));
+                let p = carrier.param(&At::Cross(m.clone()));
                 if hi.as_ref().is_none_or(|(q, _)| p < *q) {
-                    hi = Some((p, *m));
+                    hi = Some((p, m));
                 }
             }
             Ordering::Equal => match carrier.side_of_parallel(m) {
@@ -276,7 +276,7 @@ fn clip_to_region(carrier: &Carrier, lines: &[Line], closed: bool) -> Option<(At
         }
     }
     let ((pl, l), (ph, h)) = (lo?, hi?);
-    (pl < ph).then_some((At::Cross(l), At::Cross(h)))
+    (pl < ph).then(|| (At::Cross(l.clone()), At::Cross(h.clone())))
 }
 
 /// The drawn segments of `tracks`: each screen line's tracks resolved together (see the module
@@ -286,16 +286,16 @@ pub fn segments(tracks: &[Track], samples: &Samples, options: &LineOptions) -> V
     let groups = same_line_groups(tracks);
     let mut out = Vec::new();
     for group in &groups {
-        let carrier = tracks[group[0]].carrier;
+        let carrier = tracks[group[0]].carrier.clone();
         // Lines whose ends are grid points inside the view need no clipping.
         let inside = group.iter().all(|&t| {
             tracks[t]
                 .extent
                 .iter()
-                .all(|&(p, q)| in_view(&p) && in_view(&q))
+                .all(|(p, q)| in_view(p) && in_view(q))
         });
         let window = if inside {
-            let (p, q) = tracks[group[0]].extent[0];
+            let (p, q) = tracks[group[0]].extent[0].clone();
             Some(extent_window(&carrier, group, tracks).unwrap_or((p, q)))
         } else {
             clip_to_convex(&carrier, &view)
@@ -320,14 +320,14 @@ fn extent_window(carrier: &Carrier, group: &[usize], tracks: &[Track]) -> Option
     let mut lo: Option<(Param, At)> = None;
     let mut hi: Option<(Param, At)> = None;
     for &t in group {
-        for &(p, q) in &tracks[t].extent {
+        for (p, q) in &tracks[t].extent {
             for at in [p, q] {
-                let v = carrier.param(&at);
+                let v = carrier.param(at);
                 if lo.as_ref().is_none_or(|(l, _)| v < *l) {
-                    lo = Some((v, at));
+                    lo = Some((v.clone(), at.clone()));
                 }
                 if hi.as_ref().is_none_or(|(h, _)| v > *h) {
-                    hi = Some((v, at));
+                    hi = Some((v, at.clone()));
                 }
             }
         }
@@ -498,26 +498,36 @@ fn resolve(
     };
     span(window, Change::Window(1), Change::Window(-1), &mut events);
     for &t in group {
-        for &e in &tracks[t].extent {
-            span(e, Change::Extent(t, 1), Change::Extent(t, -1), &mut events);
+        for e in &tracks[t].extent {
+            span(
+                e.clone(),
+                Change::Extent(t, 1),
+                Change::Extent(t, -1),
+                &mut events,
+            );
         }
         for which in 0..2 {
-            for &s in &tracks[t].seen[which] {
+            for s in &tracks[t].seen[which] {
                 span(
-                    s,
+                    s.clone(),
                     Change::Seen(t, which, 1),
                     Change::Seen(t, which, -1),
                     &mut events,
                 );
             }
         }
-        for &s in tracks[t].in_front.iter().flatten() {
-            span(s, Change::Front(t, 1), Change::Front(t, -1), &mut events);
+        for s in tracks[t].in_front.iter().flatten() {
+            span(
+                s.clone(),
+                Change::Front(t, 1),
+                Change::Front(t, -1),
+                &mut events,
+            );
         }
         for side in 0..2 {
-            for &s in &tracks[t].beside[side] {
+            for s in &tracks[t].beside[side] {
                 span(
-                    s,
+                    s.clone(),
                     Change::Beside(t, side, 1),
                     Change::Beside(t, side, -1),
                     &mut events,
@@ -525,7 +535,7 @@ fn resolve(
             }
         }
     }
-    events.sort_by_key(|e| e.0);
+    events.sort_by(|a, b| a.0.cmp(&b.0));
     let slot = |t: usize| group.iter().position(|&u| u == t).expect("in the group");
     let mut window_open = 0;
     let mut extent = vec![0i32; group.len()];
@@ -536,7 +546,7 @@ fn resolve(
     let mut open: Option<((Label, usize), At)> = None;
     let mut i = 0;
     while i < events.len() {
-        let here = events[i].0;
+        let here = events[i].0.clone();
         let at = here.at();
         while i < events.len() && events[i].0 == here {
             match events[i].1 {
@@ -586,9 +596,9 @@ fn resolve(
         } else {
             None
         };
-        if open.map(|(l, _)| l) != label {
+        if open.as_ref().map(|(l, _)| *l) != label {
             if let Some(((l, t), from)) = open.take() {
-                push(&tracks[t].carrier, l, t, [from, at], samples, out);
+                push(&tracks[t].carrier, l, t, [from, at.clone()], samples, out);
             }
             open = label.map(|l| (l, at));
         }
@@ -605,11 +615,12 @@ fn push(
     out: &mut Vec<Segment>,
 ) {
     // In the track's own direction.
-    let Some(ordered) = carrier.ordered(at[0], at[1]) else {
+    let [a, b] = at;
+    let Some(ordered) = carrier.ordered(a, b) else {
         return;
     };
     let at = ordered.map(|p| p.at());
-    let ends = at.map(|a| carrier.pixel(&a, samples));
+    let ends = [0, 1].map(|k| carrier.pixel(&at[k], samples));
     // Two exact points a rounding apart draw as one point.
     if ends[0] != ends[1] {
         out.push(Segment {
@@ -683,8 +694,8 @@ fn in_front(track: &Track, (lo, hi): (At, At), s: &Plane) -> Option<(At, At)> {
         (Ordering::Less, Ordering::Less | Ordering::Equal) | (Ordering::Equal, Ordering::Less) => {
             Some((lo, hi))
         }
-        (Ordering::Less, Ordering::Greater) => Some((lo, At::Cross(Line::Cut(*d, *s)))),
-        (Ordering::Greater, Ordering::Less) => Some((At::Cross(Line::Cut(*d, *s)), hi)),
+        (Ordering::Less, Ordering::Greater) => Some((lo, At::Cross(Line::cut(*d, *s)))),
+        (Ordering::Greater, Ordering::Less) => Some((At::Cross(Line::cut(*d, *s)), hi)),
         _ => None,
     }
 }
@@ -692,7 +703,7 @@ fn in_front(track: &Track, (lo, hi): (At, At), s: &Plane) -> Option<(At, At)> {
 /// The depth order of planes `s` and `t` at point `at` of the carrier (`Less`: `s` nearer).
 fn depth_order_on(carrier: &Carrier, at: &At, s: &Plane, t: &Plane) -> Ordering {
     let other = match at {
-        At::Cross(m) => *m,
+        At::Cross(m) => m.clone(),
         At::Grid([x, y]) => {
             // A grid line through the point, across the carrier.
             let p = GridPoint { x: *x, y: *y, z: 0 };
@@ -711,12 +722,12 @@ fn depth_order_on(carrier: &Carrier, at: &At, s: &Plane, t: &Plane) -> Ordering 
 /// A box around the track's extent in grid units, widened (a filter).
 fn track_box(track: &Track) -> [f64; 4] {
     let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
-    for &(p, q) in &track.extent {
+    for (p, q) in &track.extent {
         for at in [p, q] {
             // Correctly rounded: within half an ulp of the exact point.
             let [x, y] = match at {
-                At::Grid([x, y]) => [x as f64, y as f64],
-                At::Cross(m) => crate::draw::regions::exact_crossing(&track.carrier.line, &m)
+                At::Grid([x, y]) => [*x as f64, *y as f64],
+                At::Cross(m) => crate::draw::regions::exact_crossing(&track.carrier.line, m)
                     .expect("a crossing line is not parallel"),
             };
             b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];

@@ -23,6 +23,7 @@ use crate::exact::polygon::{Boundary, Piece, Split, separated};
 use crate::exact::predicates::Line;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
+use std::sync::Arc;
 
 /// Counters of one BSP run.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -58,10 +59,10 @@ pub struct Bsp {
 }
 
 /// What a node splits by.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 enum Splitter {
     /// A support plane and the polygon it is the plane of: the viewer is on its negative side.
-    Support(Plane, u32),
+    Support(Arc<Plane>, u32),
     /// A vertical plane (a screen line): its two sides do not overlap on screen, so their order
     /// does not matter. These keep the tree balanced where support planes would not (the faces
     /// of a convex mesh never separate one another).
@@ -120,7 +121,7 @@ fn candidates<'a>(pieces: &'a [Piece], boxes: &[[f64; 4]]) -> (Vec<Splitter>, Ve
     let cstep = pieces.len().div_ceil(CANDIDATES).max(1);
     let mut out: Vec<Splitter> = (0..pieces.len())
         .step_by(cstep)
-        .map(|i| Splitter::Support(pieces[i].support, pieces[i].poly))
+        .map(|i| Splitter::Support(pieces[i].support.clone(), pieces[i].poly))
         .collect();
     if pieces.len() > 2 {
         let centres: Vec<[f64; 2]> = boxes
@@ -232,14 +233,14 @@ impl Bsp {
                     .map(|(i, c)| (score(c, &sample), i))
                     .collect();
                 ranked.sort_unstable();
-                let best = cands[ranked[0].1];
+                let best = cands[ranked[0].1].clone();
                 let (neg, on, pos) = partition(&best, list);
                 if matches!(best, Splitter::Screen(_)) && (neg.len() >= n || pos.len() >= n) {
                     // The screen line did not separate anything: use the first support plane,
                     // which always removes at least its own piece.
                     let mut all = neg;
                     all.extend(pos);
-                    let first = Splitter::Support(all[0].support, all[0].poly);
+                    let first = Splitter::Support(all[0].support.clone(), all[0].poly);
                     partition(&first, all)
                 } else {
                     (neg, on, pos)

@@ -231,7 +231,7 @@ fn check_provenance(case: &Case) -> Result<(), Skip> {
     for (i, piece) in r.visible.pieces.iter().enumerate() {
         let p = exact_piece(piece).unwrap_or_else(|e| panic!("piece {i} malformed: {e}"));
         assert_eq!(
-            piece.support, r.polys[p.poly].plane,
+            *piece.support, r.polys[p.poly].plane,
             "piece {i} is not in its polygon's support plane"
         );
         let own = &r.polys[p.poly].pts;
