@@ -384,7 +384,7 @@ struct SheetArgs {
 const STRESS_EXAMPLES: &str = "\
 Examples:
   sightline stress --family grazing --cases 100 --seed 1
-  sightline stress --family all --cases 91000 --seed 1         (a million cases: hours)
+  sightline stress --family all --cases 91000 --points 64 --jobs 2   (a million cases)
   sightline stress --family measured                           (issue 11's cases, world reference)
 
 Families: grazing, stacks, decals, far-offsets, tiny, t-junctions, needles, fans, edge-on,
@@ -408,6 +408,9 @@ struct StressArgs {
     /// Sample points per case (default 256; measured: pixel centres per case, default all).
     #[arg(long, value_name = "K", value_parser = parse_count, allow_negative_numbers = true)]
     points: Option<usize>,
+    /// Threads running cases (the report is the same for any number).
+    #[arg(long, default_value_t = 1, value_parser = parse_count, allow_negative_numbers = true)]
+    jobs: usize,
 }
 
 /// `--views` of `sheet`.
@@ -979,6 +982,7 @@ fn stress(a: StressArgs) -> sightline::Result<()> {
         seed: a.seed,
         points: a.points.unwrap_or(stress::DEFAULT_POINTS),
         failures: a.failures,
+        jobs: a.jobs,
     };
     let reports = with_bars(|report| stress::run(&a.family.families(), &options, report));
     print!("{}", stress::format_report(&reports));

@@ -242,6 +242,7 @@ fn a_failing_run_writes_its_shrunk_cases_and_reports_them() {
         seed: 4,
         points: POINTS,
         failures: dir.path().join("failures"),
+        jobs: 2,
     };
     let r = sightline::stress::run_family(Family::Touching, &options, &DropsAPiece, &mut || {});
     assert_eq!(r.failed.len(), 2, "{r:?}");
@@ -261,20 +262,34 @@ fn a_failing_run_writes_its_shrunk_cases_and_reports_them() {
     }
 }
 
-/// The same options give the same report, times aside.
+/// The same options give the same report, times aside, whatever the number of jobs.
 #[test]
-fn a_run_is_deterministic() {
-    let options = RunOptions {
-        cases: 3,
-        seed: 9,
-        points: 64,
-        failures: std::env::temp_dir().join("sightline-stress-unused"),
+fn a_run_is_deterministic_with_any_number_of_jobs() {
+    let run = |jobs: usize| {
+        let options = RunOptions {
+            cases: 5,
+            seed: 9,
+            points: 64,
+            failures: std::env::temp_dir().join("sightline-stress-unused"),
+            jobs,
+        };
+        let mut ticks = 0;
+        let r =
+            sightline::stress::run_family(Family::Fans, &options, default_strategy(), &mut || {
+                ticks += 1
+            });
+        assert_eq!(ticks, 5, "one tick per case with {jobs} jobs");
+        r
     };
-    let run =
-        || sightline::stress::run_family(Family::Fans, &options, default_strategy(), &mut || {});
-    let (a, b) = (run(), run());
-    assert_eq!(a.tally, b.tally);
-    assert_eq!(a.fallbacks, b.fallbacks);
+    let (a, b, c) = (run(1), run(1), run(3));
+    for other in [&b, &c] {
+        assert_eq!(a.cases, other.cases);
+        assert_eq!(a.tally, other.tally);
+        assert_eq!(a.fallbacks, other.fallbacks);
+        assert_eq!(a.strategy_fallbacks, other.strategy_fallbacks);
+        assert_eq!(a.max_fallbacks, other.max_fallbacks);
+    }
+    assert!(a.fallbacks > 0, "fans reach the exact fallbacks: {a:?}");
     assert_eq!(a.failed.len(), 0);
 }
 

@@ -14,8 +14,10 @@
 //! - [`rng`]: the deterministic random numbers.
 //!
 //! Invariant of a run ([`run`]): the same families, case count, seed and point count give the
-//! same cases, the same points and the same report, times aside. Cases run one after another on
-//! the calling thread (the kernel's fallback counter is per thread).
+//! same cases, the same points and the same report, times aside, whatever the number of jobs:
+//! case k of a family runs whole on one thread (the kernel's fallback counter is per thread),
+//! thread j of `jobs` taking the cases k with k mod jobs = j, and the failing cases are reported
+//! in case order.
 
 pub mod check;
 pub mod families;
@@ -33,6 +35,7 @@ use crate::progress::{Report, Ticker};
 use crate::visibility::Strategy;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering as AtomicOrdering};
 
 /// What `sightline stress --family` runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -91,6 +94,8 @@ pub struct RunOptions {
     pub points: usize,
     /// Where shrunk failing cases are written.
     pub failures: PathBuf,
+    /// Threads running cases (at least 1).
+    pub jobs: usize,
 }
 
 /// Sample points per case unless asked otherwise.
@@ -181,24 +186,65 @@ pub fn run_family(
     tick: &mut dyn FnMut(),
 ) -> FamilyReport {
     let start = std::time::Instant::now();
-    let mut r = FamilyReport::new(family);
-    for index in 0..options.cases {
-        let case = family.case(options.seed, index);
-        let outcome = check_case(&case, strategy, options.points);
-        r.add_case(&outcome);
-        if outcome.failed() {
-            r.failed.push(shrink_and_write(
-                &case,
-                &outcome,
-                strategy,
-                options.points,
-                &options.failures,
-            ));
+    let jobs = options.jobs.max(1) as u64;
+    let done = AtomicU64::new(0);
+    let slices: Vec<(FamilyReport, Vec<(u64, FailedCase)>)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..jobs)
+            .map(|j| {
+                let done = &done;
+                scope.spawn(move || {
+                    let mut r = FamilyReport::new(family);
+                    let mut failed = Vec::new();
+                    for index in (j..options.cases).step_by(jobs as usize) {
+                        let case = family.case(options.seed, index);
+                        let outcome = check_case(&case, strategy, options.points);
+                        r.add_case(&outcome);
+                        if outcome.failed() {
+                            let written = shrink_and_write(
+                                &case,
+                                &outcome,
+                                strategy,
+                                options.points,
+                                &options.failures,
+                            );
+                            failed.push((index, written));
+                        }
+                        done.fetch_add(1, AtomicOrdering::Relaxed);
+                    }
+                    (r, failed)
+                })
+            })
+            .collect();
+        // Progress from this thread, as the workers count cases.
+        let mut shown = 0;
+        while handles.iter().any(|h| !h.is_finished()) {
+            std::thread::sleep(std::time::Duration::from_millis(50));
+            shown = tick_to(done.load(AtomicOrdering::Relaxed), shown, tick);
         }
-        tick();
+        tick_to(done.load(AtomicOrdering::Relaxed), shown, tick);
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("a stress case panicked"))
+            .collect()
+    });
+    let mut r = FamilyReport::new(family);
+    let mut failed = Vec::new();
+    for (slice, f) in slices {
+        r.merge(&slice);
+        failed.extend(f);
     }
+    failed.sort_by_key(|(index, _)| *index);
+    r.failed = failed.into_iter().map(|(_, f)| f).collect();
     r.seconds = start.elapsed().as_secs_f64();
     r
+}
+
+/// Calls `tick` once per case done since `shown`; returns the new count shown.
+fn tick_to(done: u64, shown: u64, tick: &mut dyn FnMut()) -> u64 {
+    for _ in shown..done {
+        tick();
+    }
+    done.max(shown)
 }
 
 /// Shrinks a failing case and writes it as a fixture.
