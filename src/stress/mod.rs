@@ -192,27 +192,32 @@ pub fn run_family(
         let handles: Vec<_> = (0..jobs)
             .map(|j| {
                 let done = &done;
-                scope.spawn(move || {
-                    let mut r = FamilyReport::new(family);
-                    let mut failed = Vec::new();
-                    for index in (j..options.cases).step_by(jobs as usize) {
-                        let case = family.case(options.seed, index);
-                        let outcome = check_case(&case, strategy, options.points);
-                        r.add_case(&outcome);
-                        if outcome.failed() {
-                            let written = shrink_and_write(
-                                &case,
-                                &outcome,
-                                strategy,
-                                options.points,
-                                &options.failures,
-                            );
-                            failed.push((index, written));
+                // The main thread's stack size, not a spawned thread's 2 MiB: the strategies
+                // recurse (the BSP) as they do under the CLI.
+                let worker = std::thread::Builder::new().stack_size(8 << 20);
+                worker
+                    .spawn_scoped(scope, move || {
+                        let mut r = FamilyReport::new(family);
+                        let mut failed = Vec::new();
+                        for index in (j..options.cases).step_by(jobs as usize) {
+                            let case = family.case(options.seed, index);
+                            let outcome = check_case(&case, strategy, options.points);
+                            r.add_case(&outcome);
+                            if outcome.failed() {
+                                let written = shrink_and_write(
+                                    &case,
+                                    &outcome,
+                                    strategy,
+                                    options.points,
+                                    &options.failures,
+                                );
+                                failed.push((index, written));
+                            }
+                            done.fetch_add(1, AtomicOrdering::Relaxed);
                         }
-                        done.fetch_add(1, AtomicOrdering::Relaxed);
-                    }
-                    (r, failed)
-                })
+                        (r, failed)
+                    })
+                    .expect("a stress worker thread starts")
             })
             .collect();
         // Progress from this thread, as the workers count cases.
