@@ -178,13 +178,10 @@ impl Line {
                 let d: i128 = p.d.as_();
                 (p.a * x as i128 + p.b * y as i128 + d).cmp(&0)
             }
-            Line::Cut(p, q) => {
-                let _ = (p, q);
-                match self.approx().sign_at([x as f64, y as f64, 0.0]) {
-                    Some(s) => s,
-                    None => self.sign_at_grid_exact(x, y),
-                }
-            }
+            Line::Cut(..) => match self.approx().sign_at([x as f64, y as f64, 0.0]) {
+                Some(s) => s,
+                None => self.sign_at_grid_exact(x, y),
+            },
         }
     }
 
