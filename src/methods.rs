@@ -19,7 +19,7 @@ use crate::raster::renderer::{
     ABufferRenderer, RasterOptions, Renderer, ScanlineRenderer, WarnockRenderer, ZBufferRenderer,
 };
 use crate::scene::Scene;
-use crate::visibility::{BspTree, CoverageMap, Painter, Strategy};
+use crate::visibility::{BspTree, CoverageMap, Newell, Painter, Strategy};
 
 /// What computes a method's result.
 #[derive(Clone, Copy)]
@@ -68,7 +68,7 @@ const VECTOR: &[Output] = &[Output::Svg, Output::Json, Output::Png];
 const PIXELS: &[Output] = &[Output::Png];
 
 /// Every method, in the order the CLI lists them.
-pub static METHODS: [Method; 7] = [
+pub static METHODS: [Method; 8] = [
     Method {
         name: "zbuffer",
         summary: "z-buffer with exact coverage and depth at pixel centres: the reference (PNG)",
@@ -123,6 +123,16 @@ pub static METHODS: [Method; 7] = [
         name: "bsp",
         summary: "exact visible polygons through a 3D BSP tree walked front to back (SVG, JSON, PNG)",
         engine: Engine::Object(&BspTree),
+        exact: true,
+        outputs: VECTOR,
+        blends: true,
+        shading: false,
+        depth: false,
+    },
+    Method {
+        name: "newell",
+        summary: "exact visible polygons: Newell's depth sort, pieces cut where the order cycles or faces cross, painted exactly back to front (SVG, JSON, PNG)",
+        engine: Engine::Object(&Newell),
         exact: true,
         outputs: VECTOR,
         blends: true,

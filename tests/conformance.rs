@@ -8,9 +8,10 @@
 //! interior pixels, so a scene that renders empty cannot pass.
 
 use sightline::camera::{Camera, NamedView};
-use sightline::methods::{METHODS, method};
+use sightline::methods::{Engine, METHODS, method};
 use sightline::pipeline::{compare_ids, prepare};
 use sightline::project::CullMode;
+use sightline::visibility::{CoverageMap, Strategy};
 use std::path::PathBuf;
 
 /// The loadable scenes in `fixtures/` (not `fixtures/bad/`), sorted.
@@ -53,6 +54,61 @@ fn every_exact_method_matches_the_zbuffer_inside_faces_on_every_fixture() {
         }
     }
     assert_eq!(compared, files.len() * 2 * METHODS.len());
+}
+
+/// Every exact object-space strategy computes the coverage map's visible set: the exact
+/// symmetric difference of their regions (per polygon, opaque pieces and translucent layers) is
+/// empty, on every fixture from two views, with every face opaque and with every fifth polygon
+/// translucent. The check itself is shown able to fail: the coverage map's set less one piece
+/// differs from it.
+#[test]
+fn every_exact_strategy_has_the_coverage_maps_visible_set_on_every_fixture() {
+    let strategies: Vec<(&str, &dyn Strategy)> = METHODS
+        .iter()
+        .filter(|m| m.exact)
+        .filter_map(|m| match m.engine {
+            Engine::Object(s) => Some((m.name, s)),
+            Engine::Image(_) => None,
+        })
+        .collect();
+    assert!(
+        strategies.len() >= 2,
+        "exact strategies: {}",
+        strategies.len()
+    );
+    let mut compared = 0;
+    for file in &fixtures() {
+        let scene = sightline::load(file, None).unwrap_or_else(|e| panic!("{e}"));
+        for view in [NamedView::Iso, NamedView::Front] {
+            let camera = Camera::fit(view, scene.bounds().unwrap(), false, 40.0, 96, 80);
+            let screen = prepare(&scene, &camera, CullMode::Auto).screen;
+            let every_fifth = |k: u32| k.is_multiple_of(5);
+            let opaque = |_: u32| false;
+            for (layers, translucent) in [
+                ("opaque", &opaque as &dyn Fn(u32) -> bool),
+                ("every fifth translucent", &every_fifth),
+            ] {
+                let want = CoverageMap.visible_set(&screen, translucent, None);
+                assert!(!want.pieces.is_empty() || !want.layered.is_empty());
+                let mut less = want.clone();
+                if less.pieces.pop().is_some() {
+                    assert!(!want.symmetric_difference(&less).is_empty());
+                }
+                for (name, strategy) in &strategies {
+                    let got = strategy.visible_set(&screen, translucent, None);
+                    let diff = want.symmetric_difference(&got);
+                    assert!(
+                        diff.is_empty(),
+                        "{name} on {} ({view:?}, {layers}): {} parts differ from the coverage map",
+                        file.display(),
+                        diff.len()
+                    );
+                    compared += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(compared, fixtures().len() * 2 * 2 * strategies.len());
 }
 
 /// The approximate painter is measured, not trusted: on the cyclic bars it is wrong, and the

@@ -19,21 +19,11 @@
 //! Pieces are bucketed on a uniform screen grid so that a new piece meets only the visible
 //! pieces whose bounds overlap its own; the bounds are a filter, every decision is exact.
 
-use super::grid::BoxGrid;
+pub(crate) use super::live::bounds;
+use super::live::{Live, overlap};
 use crate::exact::polygon::{Piece, Split, separated};
 use crate::project::ScreenScene;
 use std::cmp::Reverse;
-
-/// Screen bounds (grid units) that certainly contain the piece, widened by a unit so that
-/// touching pieces also meet: a filter for candidate pairs, never a decision.
-pub(crate) fn bounds(p: &Piece) -> [f64; 4] {
-    let b = p.bounds();
-    [b[0] - 1.0, b[1] - 1.0, b[2] + 1.0, b[3] + 1.0]
-}
-
-fn overlap(a: &[f64; 4], b: &[f64; 4]) -> bool {
-    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
-}
 
 /// The order of coplanar pieces, front first: larger face id, then later polygon.
 pub(crate) fn tie_key(screen: &ScreenScene, p: &Piece) -> (Reverse<u32>, Reverse<u32>) {
@@ -54,13 +44,8 @@ pub struct CoverageStats {
 /// The exact visible set under construction. See the module docs.
 pub struct Coverage<'a> {
     screen: &'a ScreenScene,
-    /// Every piece ever made visible; `None` once replaced.
-    visible: Vec<Option<Piece>>,
-    bounds: Vec<[f64; 4]>,
-    grid: BoxGrid,
-    /// Per visible piece, the last query that met it (dedupes across buckets).
-    seen: Vec<u32>,
-    query: u32,
+    /// Every piece ever made visible; removed once replaced.
+    visible: Live,
     /// Counters so far.
     pub stats: CoverageStats,
 }
@@ -71,48 +56,25 @@ impl<'a> Coverage<'a> {
         let boxes: Vec<[f64; 4]> = pieces.into_iter().map(bounds).collect();
         Coverage {
             screen,
-            visible: Vec::new(),
-            bounds: Vec::new(),
-            grid: BoxGrid::over(&boxes, boxes.len()),
-            seen: Vec::new(),
-            query: 0,
+            visible: Live::over(&boxes, boxes.len()),
             stats: CoverageStats::default(),
         }
     }
 
+    /// The map of pieces already pairwise disjoint and in front of whatever will be layered
+    /// over them (another exact strategy's visible set), as they are.
+    pub fn of_visible(screen: &'a ScreenScene, pieces: Vec<Piece>) -> Self {
+        let mut map = Coverage::new(screen, &pieces);
+        for p in pieces {
+            let b = bounds(&p);
+            map.visible.add(p, b);
+        }
+        map
+    }
+
     /// The live visible pieces, in the order they became visible.
     pub fn into_pieces(self) -> Vec<Piece> {
-        self.visible.into_iter().flatten().collect()
-    }
-
-    /// The live visible pieces whose bounds overlap `b`, in index order.
-    fn near(&mut self, b: &[f64; 4]) -> Vec<u32> {
-        self.query += 1;
-        let mut near: Vec<u32> = Vec::new();
-        let (visible, bounds, seen, query) =
-            (&self.visible, &self.bounds, &mut self.seen, self.query);
-        // Replaced pieces leave their cells lazily, here.
-        self.grid.visit(
-            b,
-            |v| visible[v as usize].is_some(),
-            |v| {
-                if seen[v as usize] != query && overlap(&bounds[v as usize], b) {
-                    seen[v as usize] = query;
-                    near.push(v);
-                }
-            },
-        );
-        near.sort_unstable();
-        near
-    }
-
-    fn add(&mut self, piece: Piece, pb: [f64; 4]) -> u32 {
-        let index = self.visible.len() as u32;
-        self.grid.insert(index, &pb);
-        self.visible.push(Some(piece));
-        self.bounds.push(pb);
-        self.seen.push(0);
-        index
+        self.visible.into_pieces()
     }
 
     /// Inserts a piece that nothing already inserted lies behind where they overlap.
@@ -120,7 +82,7 @@ impl<'a> Coverage<'a> {
         self.stats.inserted += 1;
         for part in self.clipped_by_near(piece, |_, part, front, out| subtract(part, front, out)) {
             let b = bounds(&part);
-            self.add(part, b);
+            self.visible.add(part, b);
         }
     }
 
@@ -155,10 +117,10 @@ impl<'a> Coverage<'a> {
         piece: Piece,
         clip: impl Fn(&ScreenScene, Piece, &Piece, &mut Vec<Piece>),
     ) -> Vec<Piece> {
-        let near = self.near(&bounds(&piece));
+        let near = self.visible.near(&bounds(&piece));
         let mut parts = vec![piece];
         for v in near {
-            let front = self.visible[v as usize].as_ref().expect("live");
+            let front = self.visible.get(v).expect("live");
             let mut next = Vec::with_capacity(parts.len());
             for part in parts {
                 self.stats.overlap_tests += 1;
@@ -176,19 +138,19 @@ impl<'a> Coverage<'a> {
     pub fn insert(&mut self, piece: Piece) {
         self.stats.inserted += 1;
         let b = bounds(&piece);
-        let mut queue = self.near(&b);
+        let mut queue = self.visible.near(&b);
         // Each part with its bounds, computed once: they cost crossings.
         let mut parts = vec![(piece, b)];
         let mut resolved = Vec::new();
         let mut done = Vec::new();
         let mut next_in_queue = 0;
         while next_in_queue < queue.len() {
-            let v = queue[next_in_queue] as usize;
+            let v = queue[next_in_queue];
             next_in_queue += 1;
-            let Some(front) = self.visible[v].as_ref() else {
+            let Some(front) = self.visible.get(v) else {
                 continue;
             };
-            let vb = self.bounds[v];
+            let vb = *self.visible.bounds_of(v);
             let mut replacement: Option<Vec<Piece>> = None;
             // Parts that `front` leaves alone stay in place; resolved ones wait in `done`, since
             // they are settled against `front`.
@@ -218,11 +180,11 @@ impl<'a> Coverage<'a> {
             }
             parts.append(&mut done);
             if let Some(front_keeps) = replacement {
-                self.visible[v] = None;
+                self.visible.take(v);
                 self.stats.replaced += 1;
                 for p in front_keeps {
                     let b = bounds(&p);
-                    queue.push(self.add(p, b));
+                    queue.push(self.visible.add(p, b));
                 }
             }
             if parts.is_empty() {
@@ -230,7 +192,7 @@ impl<'a> Coverage<'a> {
             }
         }
         for (part, b) in parts {
-            self.add(part, b);
+            self.visible.add(part, b);
         }
     }
 
@@ -299,27 +261,35 @@ impl<'a> Coverage<'a> {
 
 /// Pushes the parts of `piece` outside the convex `front` (exactly; touching is outside).
 pub(crate) fn subtract(piece: Piece, front: &Piece, out: &mut Vec<Piece>) {
+    clip(piece, front, out);
+}
+
+/// Clips `piece` by the convex `front`, exactly: pushes the parts outside `front` to `outside`
+/// (convex, disjoint; touching is outside) and returns the part inside it, if it has area. The
+/// inside part's lines along `front`'s sides keep `front`'s boundaries.
+pub(crate) fn clip(piece: Piece, front: &Piece, outside: &mut Vec<Piece>) -> Option<Piece> {
     if separated(&piece, front) {
-        out.push(piece);
-        return;
+        outside.push(piece);
+        return None;
     }
     let mut inside = piece;
     let lines = front.lines.iter().zip(&front.line_approx);
     for ((line, approx), origin) in lines.zip(&front.boundaries) {
         match inside.split_by_line_with(line, approx, *origin) {
-            // Entirely outside this line of `front`: nothing of it is hidden.
+            // Entirely outside this line of `front`: nothing of it is inside.
             Split::Negative => {
-                out.push(inside);
-                return;
+                outside.push(inside);
+                return None;
             }
             Split::Positive => {}
-            Split::Both(outside, rest) => {
-                out.push(outside);
+            Split::Both(out, rest) => {
+                outside.push(out);
                 inside = rest;
             }
             // No area: nothing to keep.
-            Split::On => return,
+            Split::On => return None,
         }
     }
-    // What is left is inside every line of `front`: hidden.
+    // What is left is inside every line of `front`.
+    Some(inside)
 }

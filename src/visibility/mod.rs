@@ -10,6 +10,7 @@
 //! |---|---|---|
 //! | [`CoverageMap`] | `coverage` | pieces into a depth-aware coverage map, overlaps split where their planes meet |
 //! | [`BspTree`] | `bsp` | a 3D BSP of the pieces walked front to back into the coverage map |
+//! | [`Newell`] | `newell` | Newell's depth sort with cuts, then exact overpainting along its list |
 //! | [`Painter`] | `painter` | whole faces sorted by farthest depth (approximate) |
 //!
 //! Adding a strategy: one file implementing [`Strategy`], listed once in the method registry
@@ -20,11 +21,14 @@ pub mod bsp_tree;
 pub mod coverage;
 pub mod coverage_map;
 pub(crate) mod grid;
+pub(crate) mod live;
+pub mod newell;
 pub mod painter;
 pub mod visible_set;
 
 pub use bsp_tree::BspTree;
 pub use coverage_map::CoverageMap;
+pub use newell::Newell;
 pub use painter::Painter;
 pub use visible_set::{Fragment, Stats, VisibleSet};
 

@@ -31,6 +31,8 @@
 //!
 //! [`Boundary`]: crate::exact::polygon::Boundary
 
+use super::coverage::subtract;
+use super::live::{Live, bounds};
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::{Line, line_side};
 use crate::exact::{Plane, Samples, w256};
@@ -161,6 +163,30 @@ impl VisibleSet {
         ids
     }
 
+    /// The exact symmetric difference of two visible sets of one screen scene: the parts of
+    /// each set's pieces that the other set's pieces of the same polygon do not cover, opaque
+    /// pieces against opaque pieces and layered exact pieces against layered exact pieces
+    /// (their order is not compared). Empty exactly when the two show every polygon in the same
+    /// places; each part has positive area. Whole-polygon fragments (the painter's) are not
+    /// compared.
+    pub fn symmetric_difference(&self, other: &VisibleSet) -> Vec<Piece> {
+        let layered = |v: &VisibleSet| -> Vec<Piece> {
+            v.layered
+                .iter()
+                .filter_map(|f| match f {
+                    Fragment::Piece(p) => Some((**p).clone()),
+                    Fragment::Polygon(_) => None,
+                })
+                .collect()
+        };
+        let (la, lb) = (layered(self), layered(other));
+        let mut out = uncovered(&self.pieces, &other.pieces);
+        out.extend(uncovered(&other.pieces, &self.pieces));
+        out.extend(uncovered(&la, &lb));
+        out.extend(uncovered(&lb, &la));
+        out
+    }
+
     /// The pieces' vertices in pixel coordinates (y down), rounded once: for drawing.
     pub fn pixel_rings(&self, screen: &ScreenScene) -> Vec<(u32, Vec<[f64; 2]>)> {
         let s = Samples::new(screen.width, screen.height);
@@ -176,4 +202,30 @@ impl VisibleSet {
             })
             .collect()
     }
+}
+
+/// The parts of `pieces` that no piece of `cover` of the same polygon covers, exactly.
+fn uncovered(pieces: &[Piece], cover: &[Piece]) -> Vec<Piece> {
+    let boxes: Vec<[f64; 4]> = cover.iter().map(bounds).collect();
+    let mut index = Live::over(&boxes, boxes.len());
+    for (p, b) in cover.iter().zip(&boxes) {
+        index.add(p.clone(), *b);
+    }
+    let mut out = Vec::new();
+    for piece in pieces {
+        let mut parts = vec![piece.clone()];
+        for v in index.near(&bounds(piece)) {
+            let c = index.get(v).expect("never removed");
+            if c.poly != piece.poly {
+                continue;
+            }
+            let mut next = Vec::new();
+            for p in parts {
+                subtract(p, c, &mut next);
+            }
+            parts = next;
+        }
+        out.extend(parts);
+    }
+    out
 }

@@ -7,14 +7,15 @@
 //!   kernel: piece vertices solved from their two lines' integer coefficients as homogeneous
 //!   points (`Line::Cut(p, q)` has coefficients `c_q·p - c_p·q`), exact point location, SAT, and
 //!   the area of a union of polygons by a vertical-slab sweep;
-//! - [`properties`]: the six properties and their runner;
+//! - [`properties`]: the seven properties and their runner;
 //! - [`regressions`]: cases the properties once failed, each named after the behaviour it keeps.
 //!
 //! The set checked is the one `--method coverage` draws for opaque scenes (the depth-aware coverage
-//! map); property 6 holds the BSP walk's set against it.
+//! map); property 6 holds the BSP walk's set against it, property 7 every exact strategy of the
+//! method registry.
 //!
-//! Normal run (2,000 cases per property, 12,000 in all; a fixed RNG seed per property unless
-//! PROPTEST_RNG_SEED is set):
+//! Normal run (2,000 cases per property, 500 for `strategies_agree`: 12,500 in all; a fixed RNG
+//! seed per property unless PROPTEST_RNG_SEED is set):
 //!     cargo test --release --test visible_set
 //! Long run (SIGHTLINE_PROP_CASES per property, default 200,000; random seeds):
 //!     SIGHTLINE_PROP_CASES=200000 cargo test --release --test visible_set -- --ignored _long

@@ -16,6 +16,9 @@
 //!    run twice.
 //! 6. **paths agree**: the BSP walked front to back gives every face the same exact visible area
 //!    as the coverage map, with disjoint pieces.
+//! 7. **strategies agree** (500 cases): every exact object-space strategy of the method registry
+//!    has an empty exact symmetric difference with the coverage map, and (one case in four) the
+//!    same exact area per face.
 //!
 //! A case the properties are not stated for (no scene, a non-simple screen polygon) is rejected
 //! and replaced, so every counted case is checked.
@@ -28,6 +31,7 @@ use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
 use proptest::test_runner::{Config, RngSeed, TestCaseError, TestError, TestRunner};
 use sightline::exact::polygon::{same_plane, separated};
+use sightline::methods::{Engine, METHODS};
 use sightline::output::svg::{SvgOptions, write_svg};
 use sightline::pipeline::{Fill, prepare};
 use sightline::project::ScreenScene;
@@ -303,28 +307,35 @@ pub fn check_determinism(case: &Case) -> Result<(), Skip> {
     Ok(())
 }
 
+/// The per-polygon exact visible areas of a visible set (oracle arithmetic).
+fn area_per_poly(r: &Run, v: &VisibleSet) -> Vec<BigRational> {
+    let mut areas = vec![BigRational::zero(); r.screen.polys.len()];
+    for p in exact_pieces(v) {
+        areas[p.poly] += &p.twice_area;
+    }
+    areas
+}
+
+/// Asserts that `name`'s visible set gives every polygon the coverage map's exact area.
+fn assert_same_areas(r: &Run, name: &str, other: &VisibleSet) {
+    let want = area_per_poly(r, &r.visible);
+    for (poly, (x, y)) in want.iter().zip(&area_per_poly(r, other)).enumerate() {
+        assert!(
+            x == y,
+            "poly {poly}: visible area {} by the coverage map, {} by {name}",
+            x.to_f64().unwrap_or(f64::NAN) / 2.0,
+            y.to_f64().unwrap_or(f64::NAN) / 2.0
+        );
+    }
+}
+
 /// The two exact paths (the depth-aware coverage map, and the BSP walked front to back through
 /// the ordered coverage map) are independent algorithms: each face's visible area must be the
 /// same exact rational in both, and the BSP's pieces must be disjoint too.
 fn check_paths_agree(case: &Case) -> Result<(), Skip> {
     let r = run(case)?;
     let (tree, _) = bsp_walk(&r.screen);
-    let area_per_poly = |v: &VisibleSet| {
-        let mut areas = vec![BigRational::zero(); r.screen.polys.len()];
-        for p in exact_pieces(v) {
-            areas[p.poly] += &p.twice_area;
-        }
-        areas
-    };
-    let (a, b) = (area_per_poly(&r.visible), area_per_poly(&tree));
-    for (poly, (x, y)) in a.iter().zip(&b).enumerate() {
-        assert!(
-            x == y,
-            "poly {poly}: visible area {} by the coverage map, {} by the BSP",
-            x.to_f64().unwrap_or(f64::NAN) / 2.0,
-            y.to_f64().unwrap_or(f64::NAN) / 2.0
-        );
-    }
+    assert_same_areas(&r, "the BSP walk", &tree);
     let pieces = exact_pieces(&tree);
     for i in 0..pieces.len() {
         for j in i + 1..pieces.len() {
@@ -332,6 +343,33 @@ fn check_paths_agree(case: &Case) -> Result<(), Skip> {
                 sat_separated(&pieces[i], &pieces[j]),
                 "the BSP's pieces {i} and {j} overlap"
             );
+        }
+    }
+    Ok(())
+}
+
+/// Every exact object-space strategy of the method registry (Newell's sort painted exactly,
+/// Weiler–Atherton, Warnock at object precision, ...) computes the coverage map's visible set:
+/// the exact symmetric difference of the two is empty, and (one case in four: big-rational
+/// areas are this property's main cost) every polygon's visible area is the same exact rational
+/// (oracle arithmetic). Equal areas and an empty difference also make the pieces disjoint:
+/// their areas add up to their union's.
+fn check_strategies_agree(case: &Case) -> Result<(), Skip> {
+    let r = run(case)?;
+    for m in METHODS.iter().filter(|m| m.exact) {
+        let Engine::Object(strategy) = m.engine else {
+            continue;
+        };
+        let other = strategy.visible_set(&r.screen, &|_| false, None);
+        let diff = r.visible.symmetric_difference(&other);
+        assert!(
+            diff.is_empty(),
+            "{}: {} parts in the symmetric difference with the coverage map",
+            m.name,
+            diff.len()
+        );
+        if case.seed.is_multiple_of(4) {
+            assert_same_areas(&r, m.name, &other);
         }
     }
     Ok(())
@@ -445,6 +483,16 @@ fn paths_agree() {
 }
 
 #[test]
+fn strategies_agree() {
+    check(
+        "strategies_agree",
+        500,
+        Seeding::Fixed,
+        check_strategies_agree,
+    );
+}
+
+#[test]
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn disjoint_long() {
     long("disjoint", check_disjoint);
@@ -478,4 +526,10 @@ fn determinism_long() {
 #[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
 fn paths_agree_long() {
     long("paths_agree", check_paths_agree);
+}
+
+#[test]
+#[ignore = "long: SIGHTLINE_PROP_CASES cases (default 200000)"]
+fn strategies_agree_long() {
+    long("strategies_agree", check_strategies_agree);
 }
