@@ -229,11 +229,19 @@ fn seam_strokes(
             (u.iter().map(|&v| v as u32).sum::<u32>(), u)
         };
         let c = if key(cb) < key(ca) { cb } else { ca };
-        by_color
-            .entry(to_u8(c))
-            .or_insert_with(|| (c, Vec::new()))
-            .1
-            .push(e);
+        let entry = by_color.entry(to_u8(c)).or_insert_with(|| (c, Vec::new()));
+        // Faces of one 8-bit colour may differ below it: keep the least, whatever the order
+        // the pieces come in (the canonical form sorts strokes by it).
+        let least = |x: &[f64; 3], y: &[f64; 3]| {
+            x.iter()
+                .zip(y)
+                .map(|(a, b)| a.total_cmp(b))
+                .find(|o| o.is_ne())
+        };
+        if least(&c, &entry.0) == Some(std::cmp::Ordering::Less) {
+            entry.0 = c;
+        }
+        entry.1.push(e);
     }
     by_color
         .into_values()
