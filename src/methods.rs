@@ -19,7 +19,7 @@ use crate::raster::renderer::{
     ABufferRenderer, RasterOptions, Renderer, ScanlineRenderer, WarnockRenderer, ZBufferRenderer,
 };
 use crate::scene::Scene;
-use crate::visibility::{BspTree, CoverageMap, Newell, Painter, Strategy};
+use crate::visibility::{BspTree, CoverageMap, Newell, Painter, Strategy, WeilerAtherton};
 
 /// What computes a method's result.
 #[derive(Clone, Copy)]
@@ -68,7 +68,7 @@ const VECTOR: &[Output] = &[Output::Svg, Output::Json, Output::Png];
 const PIXELS: &[Output] = &[Output::Png];
 
 /// Every method, in the order the CLI lists them.
-pub static METHODS: [Method; 8] = [
+pub static METHODS: [Method; 9] = [
     Method {
         name: "zbuffer",
         summary: "z-buffer with exact coverage and depth at pixel centres: the reference (PNG)",
@@ -133,6 +133,16 @@ pub static METHODS: [Method; 8] = [
         name: "newell",
         summary: "exact visible polygons: Newell's depth sort, pieces cut where the order cycles or faces cross, painted exactly back to front (SVG, JSON, PNG)",
         engine: Engine::Object(&Newell),
+        exact: true,
+        outputs: VECTOR,
+        blends: true,
+        shading: false,
+        depth: false,
+    },
+    Method {
+        name: "weiler-atherton",
+        summary: "exact visible polygons: Weiler-Atherton, the nearest polygon clips the rest, recursing where something inside is in front (SVG, JSON, PNG)",
+        engine: Engine::Object(&WeilerAtherton),
         exact: true,
         outputs: VECTOR,
         blends: true,

@@ -11,6 +11,7 @@
 //! | [`CoverageMap`] | `coverage` | pieces into a depth-aware coverage map, overlaps split where their planes meet |
 //! | [`BspTree`] | `bsp` | a 3D BSP of the pieces walked front to back into the coverage map |
 //! | [`Newell`] | `newell` | Newell's depth sort with cuts, then exact overpainting along its list |
+//! | [`WeilerAtherton`] | `weiler-atherton` | the nearest polygon clips the rest into inside and outside lists; inside and behind is hidden, inside and in front recurses |
 //! | [`Painter`] | `painter` | whole faces sorted by farthest depth (approximate) |
 //!
 //! Adding a strategy: one file implementing [`Strategy`], listed once in the method registry
@@ -25,12 +26,14 @@ pub(crate) mod live;
 pub mod newell;
 pub mod painter;
 pub mod visible_set;
+pub mod weiler_atherton;
 
 pub use bsp_tree::BspTree;
 pub use coverage_map::CoverageMap;
 pub use newell::Newell;
 pub use painter::Painter;
 pub use visible_set::{Fragment, Stats, VisibleSet};
+pub use weiler_atherton::WeilerAtherton;
 
 use crate::exact::polygon::{Boundary, Piece, convex_piece_indices};
 use crate::exact::{GridPoint, Samples};

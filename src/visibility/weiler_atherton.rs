@@ -1,0 +1,200 @@
+//! Weiler and Atherton's hidden-surface algorithm (`weiler-atherton`): the nearest polygon clips
+//! all the others into what lies inside it and what lies outside; what is inside and behind it
+//! is hidden, what is inside and in front of it is resolved recursively; then the outside goes
+//! on the same way.
+//!
+//! Following the course notes (section 5.2) and Weiler and Atherton (1977):
+//! 1. The polygons are taken in order of their nearest corner (ties: the z-buffer's, front
+//!    first). The next one, C, is the clip polygon: its whole remaining region, which after
+//!    earlier clips is in general non-convex and has holes.
+//! 2. Every other piece is clipped exactly against C: the parts inside C's region (the inside
+//!    list) and outside it (which stay in the list). An inside part wholly behind C's plane is
+//!    hidden and dropped; one that reaches in front of it is cut by C's plane and its nearer part
+//!    kept.
+//! 3. When nothing inside is in front of C, C's region is visible. Otherwise C and the parts in
+//!    front of it are resolved by the same procedure, with the nearest offending polygon as the
+//!    first clip polygon (Weiler and Atherton's recursive subdivision). There C is hidden
+//!    wherever the offender covers it (the offender lies wholly in front of C's plane), so a
+//!    recursion never again holds the polygon whose clip began it once its offender is done:
+//!    every second level has fewer polygons, and cyclic overlaps end.
+//!
+//! Regions are held as disjoint convex pieces of the exact kernel (a non-convex region with holes
+//! is a set of them); clipping is exact line by line ([`clip`]), with no f64 vertex anywhere.
+//! Invariant: the pieces written out are disjoint, each is in its own polygon, and at every point
+//! of one no polygon is nearer. Translucent faces are layered over the result as the coverage map
+//! layers them ([`translucent_layer`]).
+
+use super::bsp::translucent_layer;
+use super::coverage::{Coverage, clip, tie_key};
+use super::live::{Live, bounds};
+use super::visible_set::{Stats, VisibleSet};
+use super::{Strategy, initial_pieces, translucent_polygons};
+use crate::exact::polygon::{Piece, Split, separated};
+use crate::exact::predicates::fallback_count;
+use crate::progress::{Report, Ticker};
+use crate::project::ScreenScene;
+use std::collections::HashMap;
+
+/// Weiler–Atherton. See the module docs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct WeilerAtherton;
+
+/// Counters of one run.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct WeilerAthertonStats {
+    /// Clip polygons taken (at every level).
+    pub clip_polygons: usize,
+    /// Pieces clipped against a clip polygon's piece (after the exact overlap test).
+    pub clipped: usize,
+    /// Inside parts dropped as hidden behind the clip polygon.
+    pub hidden: usize,
+    /// Recursive subdivisions (something inside was in front of the clip polygon).
+    pub recursions: usize,
+    /// The deepest level of recursion.
+    pub deepest: usize,
+}
+
+impl Strategy for WeilerAtherton {
+    fn visible_set(
+        &self,
+        screen: &ScreenScene,
+        translucent: &dyn Fn(u32) -> bool,
+        report: Option<Report>,
+    ) -> VisibleSet {
+        let fallbacks = fallback_count();
+        let layered = translucent_polygons(screen, translucent);
+        let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
+            .into_iter()
+            .partition(|p| layered && translucent(p.poly));
+        let (visible, st) = visible_pieces(screen, opaque, report);
+        let mut stats = Stats::new();
+        for (k, v) in [
+            ("clip_polygons", st.clip_polygons),
+            ("clipped", st.clipped),
+            ("hidden_parts", st.hidden),
+            ("recursions", st.recursions),
+            ("deepest_recursion", st.deepest),
+        ] {
+            stats.insert(k.into(), v.into());
+        }
+        stats.insert("translucent_painter_order".into(), layered.into());
+        let (pieces, layered) = if layered {
+            let mut coverage = Coverage::of_visible(screen, visible);
+            let (parts, bsp) = translucent_layer(screen, &mut coverage, see_through, report);
+            stats.insert("translucent_fragments".into(), bsp.fragments.into());
+            (coverage.into_pieces(), parts)
+        } else {
+            (visible, Vec::new())
+        };
+        VisibleSet::exact(screen, pieces, layered, stats, fallbacks)
+    }
+}
+
+/// The visible parts of opaque `pieces`: see the module docs. `report` gets stage "visible set"
+/// (clip polygons done at the top level).
+pub fn visible_pieces(
+    screen: &ScreenScene,
+    pieces: Vec<Piece>,
+    report: Option<Report>,
+) -> (Vec<Piece>, WeilerAthertonStats) {
+    let mut st = WeilerAthertonStats::default();
+    let mut out = Vec::new();
+    let mut ticker = Ticker::new(report, "visible set", screen.polys.len() as u64);
+    resolve(screen, pieces, None, &mut out, &mut st, 0, &mut |done| {
+        ticker.tick(done)
+    });
+    ticker.finish();
+    (out, st)
+}
+
+/// Weiler and Atherton's order of clip polygons: nearest corner first, then the z-buffer's tie
+/// rule (front first), then the polygon.
+fn clip_order(screen: &ScreenScene, poly: u32) -> impl Ord {
+    let p = &screen.polys[poly as usize];
+    let nearest = screen.corners(p).iter().map(|c| c.z).min().unwrap_or(0);
+    (nearest, std::cmp::Reverse(p.id), std::cmp::Reverse(poly))
+}
+
+/// Writes the visible parts of `pieces` to `out`, taking `first`'s polygon as the first clip
+/// polygon when given. `done(k)`: k clip polygons of this level are done.
+fn resolve(
+    screen: &ScreenScene,
+    pieces: Vec<Piece>,
+    first: Option<u32>,
+    out: &mut Vec<Piece>,
+    st: &mut WeilerAthertonStats,
+    level: usize,
+    done: &mut dyn FnMut(u64),
+) {
+    st.deepest = st.deepest.max(level);
+    let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
+    let mut list = Live::over(&boxes, boxes.len());
+    let mut of_poly: HashMap<u32, Vec<u32>> = HashMap::new();
+    for (p, b) in pieces.into_iter().zip(boxes) {
+        let poly = p.poly;
+        let v = list.add(p, b);
+        of_poly.entry(poly).or_default().push(v);
+    }
+    let mut polys: Vec<u32> = of_poly.keys().copied().collect();
+    polys.sort_by_cached_key(|&k| (Some(k) != first, clip_order(screen, k)));
+    for (n, c) in polys.into_iter().enumerate() {
+        done(n as u64);
+        let members = of_poly.remove(&c).expect("listed");
+        let region: Vec<Piece> = members.into_iter().filter_map(|v| list.take(v)).collect();
+        if region.is_empty() {
+            continue;
+        }
+        st.clip_polygons += 1;
+        // The inside list, less what is hidden: parts in front of the clip polygon.
+        let mut in_front: Vec<Piece> = Vec::new();
+        for c_piece in &region {
+            for v in list.near(&bounds(c_piece)) {
+                if separated(list.get(v).expect("near is live"), c_piece) {
+                    continue;
+                }
+                let p = list.take(v).expect("live");
+                st.clipped += 1;
+                let mut outside = Vec::new();
+                let inside = clip(p, c_piece, &mut outside);
+                for o in outside {
+                    let (b, poly) = (bounds(&o), o.poly);
+                    let v = list.add(o, b);
+                    of_poly.get_mut(&poly).expect("not yet a clip").push(v);
+                }
+                let Some(q) = inside else { continue };
+                // The viewer is on the negative side of every support plane.
+                match q.split_by_plane(&c_piece.support, c_piece.poly) {
+                    Split::Positive => st.hidden += 1,
+                    Split::Negative => in_front.push(q),
+                    Split::On if tie_key(screen, &q) < tie_key(screen, c_piece) => in_front.push(q),
+                    Split::On => st.hidden += 1,
+                    Split::Both(nearer, _) => {
+                        st.hidden += 1;
+                        in_front.push(nearer);
+                    }
+                }
+            }
+        }
+        if in_front.is_empty() {
+            out.extend(region);
+            continue;
+        }
+        st.recursions += 1;
+        let offender = in_front
+            .iter()
+            .map(|p| p.poly)
+            .min_by_key(|&k| clip_order(screen, k))
+            .expect("not empty");
+        let mut inside = region;
+        inside.extend(in_front);
+        resolve(
+            screen,
+            inside,
+            Some(offender),
+            out,
+            st,
+            level + 1,
+            &mut |_| {},
+        );
+    }
+}
