@@ -19,7 +19,9 @@ use crate::raster::renderer::{
     ABufferRenderer, RasterOptions, Renderer, ScanlineRenderer, WarnockRenderer, ZBufferRenderer,
 };
 use crate::scene::Scene;
-use crate::visibility::{BspTree, CoverageMap, Newell, Painter, Strategy, WeilerAtherton};
+use crate::visibility::{
+    BspTree, CoverageMap, Newell, Painter, Strategy, WarnockExact, WeilerAtherton,
+};
 
 /// What computes a method's result.
 #[derive(Clone, Copy)]
@@ -68,7 +70,7 @@ const VECTOR: &[Output] = &[Output::Svg, Output::Json, Output::Png];
 const PIXELS: &[Output] = &[Output::Png];
 
 /// Every method, in the order the CLI lists them.
-pub static METHODS: [Method; 9] = [
+pub static METHODS: [Method; 10] = [
     Method {
         name: "zbuffer",
         summary: "z-buffer with exact coverage and depth at pixel centres: the reference (PNG)",
@@ -143,6 +145,16 @@ pub static METHODS: [Method; 9] = [
         name: "weiler-atherton",
         summary: "exact visible polygons: Weiler-Atherton, the nearest polygon clips the rest, recursing where something inside is in front (SVG, JSON, PNG)",
         engine: Engine::Object(&WeilerAtherton),
+        exact: true,
+        outputs: VECTOR,
+        blends: true,
+        shading: false,
+        depth: false,
+    },
+    Method {
+        name: "warnock-exact",
+        summary: "exact visible polygons: Warnock's quadtree at object precision, areas settled where one face is in front, leaves clipped exactly (SVG, JSON, PNG)",
+        engine: Engine::Object(&WarnockExact),
         exact: true,
         outputs: VECTOR,
         blends: true,

@@ -21,10 +21,11 @@ use sightline::lines::{
 use sightline::pipeline::{Prepared, prepare};
 use sightline::project::ScreenScene;
 use sightline::scene::{Scene, SceneBuilder, primitives};
-use sightline::visibility::{BspTree, CoverageMap, Strategy};
+use sightline::visibility::{CoverageMap, Strategy};
 use std::collections::HashMap;
 use support::camera::{fit, random_cameras, spec_camera};
 use support::scenes::random_triangles;
+use support::strategy::exact_strategies;
 
 fn exact(scene: &Scene, camera: &Camera, options: &LineOptions) -> (Prepared, ExactLines) {
     let prepared = prepare(scene, camera, options.cull);
@@ -346,7 +347,7 @@ proptest! {
     }
 
     #[test]
-    fn the_coverage_map_and_the_bsp_draw_the_same_lines(
+    fn every_exact_strategy_draws_the_coverage_maps_lines(
         seed in any::<u64>(),
         n in 2usize..14,
         camera in random_cameras(0.5f64..2.0),
@@ -354,8 +355,10 @@ proptest! {
         let Some(camera) = camera else { return Ok(()) };
         let scene = random_triangles(n, seed);
         let a = drawing_with(&CoverageMap, &scene, &camera).drawing;
-        let b = drawing_with(&BspTree, &scene, &camera).drawing;
-        prop_assert_eq!(a, b);
+        for (name, strategy) in exact_strategies() {
+            let b = drawing_with(strategy, &scene, &camera).drawing;
+            prop_assert_eq!(&a, &b, "{}", name);
+        }
     }
 
     #[test]

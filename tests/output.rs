@@ -14,13 +14,12 @@ use sightline::pipeline::{Fill, prepare, render_zbuffer};
 use sightline::project::CullMode;
 use sightline::scene::primitives::sphere_scene;
 use sightline::scene::{Material, Scene, SceneBuilder};
-use sightline::visibility::BspTree;
 use support::camera::{front_ortho, ortho_down_z, scene_camera, spec_camera};
 use support::fixtures::fixture;
 use support::oracle::{assert_seed_transparent_colours, interior_mismatches};
 use support::scenes::{add_triangle, random_triangles};
 use support::strategy::{
-    CoverageMap, Painter, Strategy, drawing_of, exact_drawing, painter_drawing,
+    CoverageMap, Painter, Strategy, drawing_of, exact_drawing, exact_strategies, painter_drawing,
 };
 
 fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<[f64; 2]> {
@@ -343,8 +342,9 @@ fn seed_transparent_scene_blends_exactly() {
 
 #[test]
 fn seed_transparent_scene_blends_exactly_with_the_exact_strategies() {
-    check_seed_transparent(&CoverageMap);
-    check_seed_transparent(&BspTree);
+    for (_, strategy) in exact_strategies() {
+        check_seed_transparent(strategy);
+    }
 }
 
 fn check_seed_transparent(strategy: &dyn Strategy) {

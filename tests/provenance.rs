@@ -1,18 +1,19 @@
 //! Every boundary of every visible piece knows where it comes from, and says so truly: the
 //! line of a piece is exactly the line its [`Boundary`] names (a side of a polygon's outline, a
-//! diagonal of its decomposition, the meeting of two polygons' planes, a BSP screen split), for
-//! both exact strategies, on interpenetrating soups, tori, fixtures and a scene cut by the near
-//! plane. And the sides of screen polygons say which face edge or clip plane they lie on.
+//! diagonal of its decomposition, the meeting of two polygons' planes, a screen split of a BSP or
+//! a quadtree), for every exact strategy of the method registry, on interpenetrating soups, tori,
+//! fixtures and a scene cut by the near plane. And the sides of screen polygons say which face edge or clip plane they lie on.
 
 use glam::DVec3;
 use sightline::camera::{Camera, NamedView, Projection};
 use sightline::exact::Plane;
 use sightline::exact::polygon::{Boundary, Piece};
 use sightline::exact::predicates::Line;
+use sightline::methods::{Engine, METHODS};
 use sightline::pipeline::prepare;
 use sightline::project::{ClipPlane, CullMode, ScreenScene, Side};
 use sightline::scene::{Material, Scene, SceneBuilder, primitives};
-use sightline::visibility::{BspTree, CoverageMap, Fragment, Strategy};
+use sightline::visibility::{CoverageMap, Fragment, Strategy};
 
 /// Is `l` the edge line through `p` and `q`, either way round?
 fn is_edge_through(
@@ -70,12 +71,20 @@ fn check_piece(screen: &ScreenScene, piece: &Piece, seen: &mut [usize; 4]) {
     }
 }
 
-/// Runs both exact strategies on `scene` seen by `camera`; returns the boundary kinds seen.
+/// Runs every exact strategy of the registry on `scene` seen by `camera`; returns the boundary
+/// kinds seen.
 fn check_scene(scene: &Scene, camera: &Camera) -> [usize; 4] {
     let screen = prepare(scene, camera, CullMode::Auto).screen;
     let mut seen = [0; 4];
     let translucent = |k: u32| k.is_multiple_of(5);
-    for strategy in [&CoverageMap as &dyn Strategy, &BspTree] {
+    let exact = METHODS
+        .iter()
+        .filter(|m| m.exact)
+        .filter_map(|m| match m.engine {
+            Engine::Object(s) => Some(s),
+            Engine::Image(_) => None,
+        });
+    for strategy in exact {
         for layered in [false, true] {
             let opaque = |_: u32| false;
             let which: &dyn Fn(u32) -> bool = if layered { &translucent } else { &opaque };

@@ -12,6 +12,7 @@
 //! | [`BspTree`] | `bsp` | a 3D BSP of the pieces walked front to back into the coverage map |
 //! | [`Newell`] | `newell` | Newell's depth sort with cuts, then exact overpainting along its list |
 //! | [`WeilerAtherton`] | `weiler-atherton` | the nearest polygon clips the rest into inside and outside lists; inside and behind is hidden, inside and in front recurses |
+//! | [`WarnockExact`] | `warnock-exact` | a quadtree of screen areas, each settled where one piece is in front of the rest there, leaves clipped exactly |
 //! | [`Painter`] | `painter` | whole faces sorted by farthest depth (approximate) |
 //!
 //! Adding a strategy: one file implementing [`Strategy`], listed once in the method registry
@@ -26,6 +27,7 @@ pub(crate) mod live;
 pub mod newell;
 pub mod painter;
 pub mod visible_set;
+pub mod warnock_exact;
 pub mod weiler_atherton;
 
 pub use bsp_tree::BspTree;
@@ -33,6 +35,7 @@ pub use coverage_map::CoverageMap;
 pub use newell::Newell;
 pub use painter::Painter;
 pub use visible_set::{Fragment, Stats, VisibleSet};
+pub use warnock_exact::WarnockExact;
 pub use weiler_atherton::WeilerAtherton;
 
 use crate::exact::polygon::{Boundary, Piece, convex_piece_indices};

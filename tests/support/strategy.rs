@@ -97,3 +97,17 @@ pub fn painter_drawing(
 pub fn compare(reference: &[Option<u32>], ids: &[Option<u32>], w: usize, h: usize) -> IdComparison {
     compare_ids(reference, ids, w, h)
 }
+
+/// Every exact object-space strategy of the method registry, with its name: the coverage map,
+/// the BSP, Newell, Weiler–Atherton, Warnock at object precision, and any added later.
+pub fn exact_strategies() -> Vec<(&'static str, &'static dyn Strategy)> {
+    use sightline::methods::{Engine, METHODS};
+    METHODS
+        .iter()
+        .filter(|m| m.exact)
+        .filter_map(|m| match m.engine {
+            Engine::Object(s) => Some((m.name, s)),
+            Engine::Image(_) => None,
+        })
+        .collect()
+}
