@@ -37,7 +37,7 @@ use std::cmp::Ordering;
 pub struct WarnockExact;
 
 /// An area whose list has at most this many pieces is a leaf (resolved by exact clipping).
-pub const LEAF_PIECES: usize = 4;
+pub const LEAF_PIECES: usize = 16;
 
 /// An area whose list has not shrunk for this many levels is a leaf: pieces that all meet at
 /// one point (a fan, a cone's apex) would otherwise be halved down to single grid units.
