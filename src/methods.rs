@@ -20,7 +20,7 @@ use crate::raster::renderer::{
 };
 use crate::scene::Scene;
 use crate::visibility::{
-    BspTree, CoverageMap, Newell, Painter, Strategy, WarnockExact, WeilerAtherton,
+    Auto, BspTree, CoverageMap, Newell, Painter, Strategy, WarnockExact, WeilerAtherton,
 };
 
 /// What computes a method's result.
@@ -70,7 +70,7 @@ const VECTOR: &[Output] = &[Output::Svg, Output::Json, Output::Png];
 const PIXELS: &[Output] = &[Output::Png];
 
 /// Every method, in the order the CLI lists them.
-pub static METHODS: [Method; 10] = [
+pub static METHODS: [Method; 11] = [
     Method {
         name: "zbuffer",
         summary: "z-buffer with exact coverage and depth at pixel centres: the reference (PNG)",
@@ -109,6 +109,16 @@ pub static METHODS: [Method; 10] = [
         outputs: PIXELS,
         blends: false,
         shading: true,
+        depth: false,
+    },
+    Method {
+        name: "auto",
+        summary: "exact visible polygons, only the stages the scene needs: pieces that overlap nothing skip ordering, the rest go to the coverage map (SVG, JSON, PNG; the default for SVG and JSON)",
+        engine: Engine::Object(&Auto),
+        exact: true,
+        outputs: VECTOR,
+        blends: true,
+        shading: false,
         depth: false,
     },
     Method {
@@ -196,7 +206,7 @@ pub fn names_with(capable: impl Fn(&Method) -> bool) -> String {
 /// reference z-buffer for pixels.
 pub fn default_for(output: Output) -> &'static Method {
     let name = match output {
-        Output::Svg | Output::Json => "coverage",
+        Output::Svg | Output::Json => "auto",
         Output::Png => "zbuffer",
     };
     method(name).expect("the defaults are registered")

@@ -221,11 +221,25 @@ pub enum Computed {
 }
 
 impl Computed {
-    /// The method's counters, one line (a JSON object for a visible set).
+    /// The method's counters: one line (a JSON object for a visible set), after a line per
+    /// stage that a strategy explains (`stage_*` entries: what was done or why it was skipped).
     pub fn detail(&self) -> String {
         match self {
             Computed::Raster(r) => r.detail.clone(),
-            Computed::Visible(v) => serde_json::Value::Object(v.stats.clone()).to_string(),
+            Computed::Visible(v) => {
+                let mut counters = v.stats.clone();
+                let mut lines = String::new();
+                // The pipeline's stages in their order, then any other.
+                let mut stages: Vec<&str> = vec!["cull", "order", "split", "blend"];
+                stages.extend(v.stats.keys().filter_map(|k| k.strip_prefix("stage_")));
+                for stage in stages {
+                    let key = format!("stage_{stage}");
+                    if let Some(serde_json::Value::String(why)) = counters.remove(&key) {
+                        lines.push_str(&format!("{stage}: {why}\n"));
+                    }
+                }
+                lines + &serde_json::Value::Object(counters).to_string()
+            }
         }
     }
 }

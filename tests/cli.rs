@@ -905,11 +905,7 @@ fn flags_that_do_not_apply_to_the_output_are_errors() {
 fn default_method_follows_the_output() {
     let dir = tempfile::tempdir().unwrap();
     let path = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
-    for (name, method) in [
-        ("d.svg", "coverage"),
-        ("d.json", "coverage"),
-        ("d.png", "zbuffer"),
-    ] {
+    for (name, method) in [("d.svg", "auto"), ("d.json", "auto"), ("d.png", "zbuffer")] {
         run_ok(&[
             "render",
             "fixtures/cube.obj",
@@ -1112,7 +1108,9 @@ fn translucent_faces_drawn_opaque_are_warned_about() {
     let warned = stderr(&["--method", "zbuffer"]);
     assert!(
         warned.contains("--method zbuffer draws translucent faces as opaque (1 on screen)")
-            && warned.contains("abuffer, coverage, bsp or painter"),
+            && warned.contains(
+                "abuffer, auto, coverage, bsp, newell, weiler-atherton, warnock-exact or painter"
+            ),
         "{warned}"
     );
     assert_eq!(stderr(&["--method", "abuffer"]), "");

@@ -39,6 +39,9 @@ pub struct CoverageStats {
     pub replaced: usize,
     /// Exact overlap tests (after the bounds filter).
     pub overlap_tests: usize,
+    /// Overlapping pairs split where their planes meet (each reaches in front of the other's
+    /// plane there): the splits interpenetration and cyclic overlap need.
+    pub plane_splits: usize,
 }
 
 /// The exact visible set under construction. See the module docs.
@@ -166,7 +169,13 @@ impl<'a> Coverage<'a> {
                     continue;
                 }
                 let (part, _) = parts.swap_remove(i);
-                let front_keeps = self.resolve(part, front, &mut resolved);
+                let front_keeps = resolve(
+                    self.screen,
+                    part,
+                    front,
+                    &mut resolved,
+                    &mut self.stats.plane_splits,
+                );
                 done.extend(resolved.drain(..).map(|p| {
                     let b = bounds(&p);
                     (p, b)
@@ -195,66 +204,73 @@ impl<'a> Coverage<'a> {
             self.visible.add(part, b);
         }
     }
+}
 
-    /// Resolves an overlapping pair: pushes what `part` keeps to `kept` and returns what the
-    /// visible piece `front` keeps, or `None` when it keeps everything.
-    fn resolve(&self, part: Piece, front: &Piece, kept: &mut Vec<Piece>) -> Option<Vec<Piece>> {
-        // The viewer is on the negative side of every support plane: the negative side of
-        // `front`'s plane is nearer than `front`.
-        match part.split_by_plane(&front.support, front.poly) {
-            Split::Positive => {
-                subtract(part, front, kept);
-                None
-            }
-            Split::Negative => {
+/// Resolves an overlapping pair: pushes what `part` keeps to `kept` and returns what the
+/// visible piece `front` keeps, or `None` when it keeps everything. Counts plane splits.
+fn resolve(
+    screen: &ScreenScene,
+    part: Piece,
+    front: &Piece,
+    kept: &mut Vec<Piece>,
+    plane_splits: &mut usize,
+) -> Option<Vec<Piece>> {
+    // The viewer is on the negative side of every support plane: the negative side of
+    // `front`'s plane is nearer than `front`.
+    match part.split_by_plane(&front.support, front.poly) {
+        Split::Positive => {
+            subtract(part, front, kept);
+            None
+        }
+        Split::Negative => {
+            let mut front_keeps = Vec::new();
+            subtract(front.clone(), &part, &mut front_keeps);
+            kept.push(part);
+            Some(front_keeps)
+        }
+        Split::On => {
+            if tie_key(screen, &part) < tie_key(screen, front) {
                 let mut front_keeps = Vec::new();
                 subtract(front.clone(), &part, &mut front_keeps);
                 kept.push(part);
                 Some(front_keeps)
+            } else {
+                subtract(part, front, kept);
+                None
             }
-            Split::On => {
-                if tie_key(self.screen, &part) < tie_key(self.screen, front) {
-                    let mut front_keeps = Vec::new();
-                    subtract(front.clone(), &part, &mut front_keeps);
-                    kept.push(part);
-                    Some(front_keeps)
-                } else {
-                    subtract(part, front, kept);
-                    None
+        }
+        Split::Both(part_nearer, part_farther) => {
+            *plane_splits += 1;
+            // Where the part is nearer, `front` is farther, and the other way round: the
+            // two splits are by the same screen line, the projection of the planes' meet.
+            let mut front_keeps = Vec::new();
+            let front_nearer = match front.split_by_plane(&part.support, part.poly) {
+                Split::Negative | Split::On => {
+                    // `front` is nearer wherever it is, so the part's nearer side misses it.
+                    subtract(part_farther, front, kept);
+                    kept.push(part_nearer);
+                    return None;
+                }
+                Split::Positive => None,
+                Split::Both(nearer, farther) => {
+                    subtract(farther, &part_nearer, &mut front_keeps);
+                    Some(nearer)
+                }
+            };
+            match front_nearer {
+                None => {
+                    // `front` is farther wherever it is: it loses what the part covers.
+                    subtract(front.clone(), &part_nearer, &mut front_keeps);
+                    kept.push(part_nearer);
+                    kept.push(part_farther);
+                }
+                Some(nearer) => {
+                    subtract(part_farther, &nearer, kept);
+                    kept.push(part_nearer);
+                    front_keeps.push(nearer);
                 }
             }
-            Split::Both(part_nearer, part_farther) => {
-                // Where the part is nearer, `front` is farther, and the other way round: the
-                // two splits are by the same screen line, the projection of the planes' meet.
-                let mut front_keeps = Vec::new();
-                let front_nearer = match front.split_by_plane(&part.support, part.poly) {
-                    Split::Negative | Split::On => {
-                        // `front` is nearer wherever it is, so the part's nearer side misses it.
-                        subtract(part_farther, front, kept);
-                        kept.push(part_nearer);
-                        return None;
-                    }
-                    Split::Positive => None,
-                    Split::Both(nearer, farther) => {
-                        subtract(farther, &part_nearer, &mut front_keeps);
-                        Some(nearer)
-                    }
-                };
-                match front_nearer {
-                    None => {
-                        // `front` is farther wherever it is: it loses what the part covers.
-                        subtract(front.clone(), &part_nearer, &mut front_keeps);
-                        kept.push(part_nearer);
-                        kept.push(part_farther);
-                    }
-                    Some(nearer) => {
-                        subtract(part_farther, &nearer, kept);
-                        kept.push(part_nearer);
-                        front_keeps.push(nearer);
-                    }
-                }
-                Some(front_keeps)
-            }
+            Some(front_keeps)
         }
     }
 }

@@ -79,7 +79,7 @@ pub fn visible_set_with_progress(
 }
 
 /// The coverage map of `pieces`, inserted nearest corner first, reporting stage "visible set".
-fn coverage_of<'a>(
+pub(crate) fn coverage_of<'a>(
     screen: &'a ScreenScene,
     mut pieces: Vec<Piece>,
     report: Option<Report>,

@@ -8,6 +8,7 @@
 //!
 //! | strategy | name | idea |
 //! |---|---|---|
+//! | [`Auto`] | `auto` | looks at the scene, then runs only the stages it needs (the coverage map on what overlaps) |
 //! | [`CoverageMap`] | `coverage` | pieces into a depth-aware coverage map, overlaps split where their planes meet |
 //! | [`BspTree`] | `bsp` | a 3D BSP of the pieces walked front to back into the coverage map |
 //! | [`Newell`] | `newell` | Newell's depth sort with cuts, then exact overpainting along its list |
@@ -18,6 +19,7 @@
 //! Adding a strategy: one file implementing [`Strategy`], listed once in the method registry
 //! ([`crate::methods`]).
 
+pub mod auto;
 pub mod bsp;
 pub mod bsp_tree;
 pub mod coverage;
@@ -30,6 +32,7 @@ pub mod visible_set;
 pub mod warnock_exact;
 pub mod weiler_atherton;
 
+pub use auto::Auto;
 pub use bsp_tree::BspTree;
 pub use coverage_map::CoverageMap;
 pub use newell::Newell;
