@@ -114,3 +114,139 @@ fn convex_once(points: &[[i64; 2]], turn: Ordering) -> bool {
     }
     wraps == 1
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exact::Plane;
+    use crate::project::ScreenPoly;
+
+    /// A screen scene of polygons given as (x, y) rings in the plane z = 0, all in mesh 0.
+    fn screen_of(rings: &[&[[i64; 2]]]) -> ScreenScene {
+        let mut s = ScreenScene {
+            width: 8,
+            height: 8,
+            ..ScreenScene::default()
+        };
+        for (k, ring) in rings.iter().enumerate() {
+            let start = s.points.len() as u32;
+            let pts: Vec<GridPoint> = ring
+                .iter()
+                .map(|&[x, y]| GridPoint { x, y, z: 0 })
+                .collect();
+            let plane = Plane::of_polygon(&pts).unwrap();
+            s.points.extend(&pts);
+            s.polys.push(ScreenPoly {
+                face: k as u32,
+                id: k as u32,
+                mesh: 0,
+                start,
+                len: pts.len() as u32,
+                plane,
+                front: true,
+            });
+        }
+        s
+    }
+
+    fn tiles(rings: &[&[[i64; 2]]]) -> bool {
+        let s = screen_of(rings);
+        let all: Vec<u32> = (0..s.polys.len() as u32).collect();
+        tiles_convex_region_once(&s, &all)
+    }
+
+    #[test]
+    fn a_fan_around_a_centre_tiles_its_convex_outline_once() {
+        let (c, r) = ([0, 0], [[4, 0], [0, 4], [-4, 0], [0, -4]]);
+        let fan: Vec<[[i64; 2]; 3]> = (0..4).map(|i| [c, r[i], r[(i + 1) % 4]]).collect();
+        let rings: Vec<&[[i64; 2]]> = fan.iter().map(|t| &t[..]).collect();
+        assert!(tiles(&rings));
+        // Clockwise everywhere (an inside-out mesh's front faces): the same, mirrored.
+        let cw: Vec<[[i64; 2]; 3]> = fan.iter().map(|t| [t[0], t[2], t[1]]).collect();
+        let rings: Vec<&[[i64; 2]]> = cw.iter().map(|t| &t[..]).collect();
+        assert!(tiles(&rings));
+        // A straight run along the outline (a T-free midpoint on a side) is fine.
+        assert!(tiles(&[
+            &[[0, 0], [2, 0], [4, 0], [4, 4]],
+            &[[0, 0], [4, 4], [0, 4]]
+        ]));
+    }
+
+    #[test]
+    fn overlaps_folds_holes_and_concave_outlines_are_not_proven() {
+        // Two triangles overlapping, sharing no edge.
+        assert!(!tiles(&[
+            &[[0, 0], [4, 0], [0, 4]],
+            &[[1, 1], [5, 1], [1, 5]]
+        ]));
+        // A fold: the second triangle turned over onto the first across their shared edge.
+        assert!(!tiles(&[
+            &[[0, 0], [4, 0], [0, 4]],
+            &[[0, 0], [0, 4], [1, 1]]
+        ]));
+        // An L of three squares: no overlap, but the outline is not convex.
+        assert!(!tiles(&[
+            &[[0, 0], [2, 0], [2, 2], [0, 2]],
+            &[[2, 0], [4, 0], [4, 2], [2, 2]],
+            &[[0, 2], [2, 2], [2, 4], [0, 4]],
+        ]));
+        // A square ring of four trapezoids around a hole: two outline loops.
+        let (o, i) = (
+            [[0, 0], [6, 0], [6, 6], [0, 6]],
+            [[2, 2], [4, 2], [4, 4], [2, 4]],
+        );
+        let ring: Vec<[[i64; 2]; 4]> = (0..4)
+            .map(|k| [o[k], o[(k + 1) % 4], i[(k + 1) % 4], i[k]])
+            .collect();
+        let rings: Vec<&[[i64; 2]]> = ring.iter().map(|q| &q[..]).collect();
+        assert!(!tiles(&rings));
+        // A T-junction: two triangles meet at the midpoint of the third's long side. The square
+        // is covered once, but the long side matches no edge exactly: refused (conservative).
+        assert!(!tiles(&[
+            &[[0, 0], [4, 0], [0, 4]],
+            &[[4, 0], [4, 4], [2, 2]],
+            &[[2, 2], [4, 4], [0, 4]],
+        ]));
+        // The same square with the matching edges tiles once.
+        assert!(tiles(&[
+            &[[0, 0], [4, 0], [2, 2]],
+            &[[0, 0], [2, 2], [0, 4]],
+            &[[2, 2], [4, 0], [4, 4], [0, 4]],
+        ]));
+        // A polygon wound the other way from the rest.
+        assert!(!tiles(&[
+            &[[0, 0], [4, 0], [0, 4]],
+            &[[4, 0], [0, 4], [4, 4]]
+        ]));
+    }
+
+    #[test]
+    fn an_outline_that_goes_round_twice_is_refused() {
+        // A fan from the centre to the corners of the star heptagon {7/2}: every triangle turns
+        // left, every spoke cancels, and the outline turns left at each of its seven corners,
+        // but it goes round twice (each point inside the inner heptagon is covered twice).
+        let corner = |k: usize| {
+            let a = std::f64::consts::TAU * (2 * k % 7) as f64 / 7.0;
+            [
+                (1000.0 * a.cos()).round() as i64,
+                (1000.0 * a.sin()).round() as i64,
+            ]
+        };
+        let fan: Vec<[[i64; 2]; 3]> = (0..7).map(|k| [[0, 0], corner(k), corner(k + 1)]).collect();
+        let rings: Vec<&[[i64; 2]]> = fan.iter().map(|t| &t[..]).collect();
+        assert!(!tiles(&rings));
+        // The plain heptagon's fan (step 1) tiles once.
+        let corner1 = |k: usize| {
+            let a = std::f64::consts::TAU * (k % 7) as f64 / 7.0;
+            [
+                (1000.0 * a.cos()).round() as i64,
+                (1000.0 * a.sin()).round() as i64,
+            ]
+        };
+        let fan: Vec<[[i64; 2]; 3]> = (0..7)
+            .map(|k| [[0, 0], corner1(k), corner1(k + 1)])
+            .collect();
+        let rings: Vec<&[[i64; 2]]> = fan.iter().map(|t| &t[..]).collect();
+        assert!(tiles(&rings));
+    }
+}
