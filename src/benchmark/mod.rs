@@ -58,7 +58,8 @@ use std::time::Instant;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Suite {
-    /// The loadable files of `fixtures/` (not `fixtures/bad/`), iso view.
+    /// The loadable files of `fixtures/` (not `fixtures/bad/`), iso view, or the camera file
+    /// `NAME.cam` beside `NAME.obj` when there is one (`cyclic_bars.cam`).
     Fixtures,
     /// Generated scenes: triangle soups, tori, a sphere, iso view.
     Generated,
@@ -141,9 +142,16 @@ pub fn scenes(suite: Suite, fixtures: &Path, meshes: &Path) -> Result<Vec<BenchS
                 .any(|e| n.ends_with(e))
         })?
         .into_iter()
-        .map(|path| BenchScene {
-            name: name_of(&path),
-            source: Source::File { path, cam: None },
+        .map(|path| {
+            // A fixture with a camera file beside it (cyclic_bars.cam) is seen through it.
+            let cam = path.with_extension("cam");
+            BenchScene {
+                name: name_of(&path),
+                source: Source::File {
+                    cam: cam.is_file().then_some(cam),
+                    path,
+                },
+            }
         })
         .collect(),
         Suite::Generated => GENERATED
