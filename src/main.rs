@@ -1238,26 +1238,6 @@ fn lines(a: LinesArgs) -> sightline::Result<()> {
     Ok(())
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Only a PNG to standard output on a terminal is refused; files, pipes and text are fine.
-    #[test]
-    fn binary_png_is_refused_on_a_terminal_only() {
-        let dash = Path::new("-");
-        assert!(refuses_binary_output(OutputFormat::Png, dash, true));
-        assert!(!refuses_binary_output(OutputFormat::Png, dash, false));
-        assert!(!refuses_binary_output(
-            OutputFormat::Png,
-            Path::new("a.png"),
-            true
-        ));
-        assert!(!refuses_binary_output(OutputFormat::Svg, dash, true));
-        assert!(!refuses_binary_output(OutputFormat::Json, dash, true));
-    }
-}
-
 /// The default folder of a suite's scene files.
 fn suite_dir(suite: sightline::benchmark::Suite, dir: Option<&Path>) -> PathBuf {
     use sightline::benchmark::Suite;
@@ -1501,4 +1481,24 @@ fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::R
         plotted.len()
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Only a PNG to standard output on a terminal is refused; files, pipes and text are fine.
+    #[test]
+    fn binary_png_is_refused_on_a_terminal_only() {
+        let dash = Path::new("-");
+        assert!(refuses_binary_output(OutputFormat::Png, dash, true));
+        assert!(!refuses_binary_output(OutputFormat::Png, dash, false));
+        assert!(!refuses_binary_output(
+            OutputFormat::Png,
+            Path::new("a.png"),
+            true
+        ));
+        assert!(!refuses_binary_output(OutputFormat::Svg, dash, true));
+        assert!(!refuses_binary_output(OutputFormat::Json, dash, true));
+    }
 }

@@ -306,7 +306,7 @@ pub fn time_median(method: &Method, scene: &Scene, camera: &Camera) -> f64 {
     let prepared = pipeline::prepare(scene, camera, CullMode::Auto);
     let mut times = Vec::new();
     let mut total = 0.0;
-    while times.len() < 5 && (times.len() < 1 || total < 2.0) {
+    while times.len() < 5 && (times.is_empty() || total < 2.0) {
         let t = time_once(method, scene, &prepared.screen, camera);
         total += t;
         times.push(t);

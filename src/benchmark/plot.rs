@@ -119,6 +119,8 @@ fn draw<DB: DrawingBackend>(
     };
     let (t0, t1) = range(&times, (1e-4, 1.0));
     let (e0, e1) = range(&errors, (1e-4, 1.0));
+    // Room below the lowest point for the legend (lower left).
+    let e0 = e0 / (e1 / e0).powf(0.7);
     let mut chart = ChartBuilder::on(root)
         .caption(format!("{scene}: error against time"), ("sans-serif", 22))
         .margin(14)
@@ -198,11 +200,12 @@ fn draw<DB: DrawingBackend>(
             .map_err(e)?;
         chart
             .draw_series(points.iter().map(|&(t, er, s)| {
-                Text::new(
-                    format!("{s}"),
-                    (t, er),
-                    ("sans-serif", 12).into_font().color(&c),
-                )
+                EmptyElement::at((t, er))
+                    + Text::new(
+                        format!("{s}"),
+                        (6, -14),
+                        ("sans-serif", 12).into_font().color(&c),
+                    )
             }))
             .map_err(e)?;
         if let Some(s) = cross
