@@ -496,6 +496,52 @@ mod tests {
     }
 
     #[test]
+    fn a_sliver_between_pixel_centres_fools_every_method_but_not_the_area() {
+        use crate::scene::SceneBuilder;
+        use glam::DVec3;
+        // A 4x4 orthographic view of [-2, 2]^2 (one world unit a pixel): a quad filling it at
+        // z = 0, and in front of it a sliver over x in [0.1, 0.2], between the centres of
+        // columns 2 (x = 0.5) and 1 (x = -0.5).
+        let mut b = SceneBuilder::new("sliver");
+        let m = b.default_material();
+        b.begin_mesh("m");
+        for (x0, x1, z) in [(-2.0, 2.0, 0.0), (0.1, 0.2, 1.0)] {
+            let v: Vec<u32> = [(x0, -2.0), (x1, -2.0), (x1, 2.0), (x0, 2.0)]
+                .iter()
+                .map(|&(x, y)| b.add_vertex(DVec3::new(x, y, z)))
+                .collect();
+            b.add_face(&v, m);
+        }
+        let scene = b.finish().unwrap();
+        let cam = CamFile::parse(
+            "eye 0 0 10\ntarget 0 0 0\nup 0 1 0\nfovy 0\northo_height 4\nnear 0.5\nfar 100\nsize 4 4\n",
+            "sliver.cam",
+        )
+        .unwrap()
+        .camera();
+        let screen = pipeline::prepare(&scene, &cam, CullMode::Auto).screen;
+        let rings = truth::truth_rings(&screen);
+        let covered = truth::covered_areas(&rings, 4, 4);
+        assert!(
+            covered.iter().all(|a| (a - 1.0).abs() < 1e-9),
+            "{covered:?}"
+        );
+        let zbuffer = crate::methods::method("zbuffer").unwrap();
+        let want = zbuffer.face_ids(&scene, &screen, &cam, None);
+        assert!(
+            want.iter().all(|&i| i.is_some() && i == want[0]),
+            "{want:?}"
+        );
+        for m in &METHODS {
+            let ids = m.face_ids(&scene, &screen, &cam, None);
+            assert_eq!(ids, want, "{}", m.name);
+            // Right at every centre, wrong on the sliver's area: 4 x 0.1 px of 16.
+            let e = truth::error_of(&rings, 4, 4, &ids);
+            assert!((e - 0.4 / 16.0).abs() < 1e-9, "{}: {e}", m.name);
+        }
+    }
+
+    #[test]
     fn sizes_and_methods_parse_or_say_why_not() {
         assert_eq!(parse_sizes("32, 64,128"), Ok(vec![32, 64, 128]));
         assert!(parse_sizes("64,32").unwrap_err().contains("increase"));
