@@ -1360,6 +1360,7 @@ fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::R
         "{pos}/{len}",
     );
     let mut rows: Vec<Row> = Vec::new();
+    let mut failures = 0usize;
     for bs in &scenes {
         let loaded = match bs.load() {
             Ok(l) => l,
@@ -1371,6 +1372,7 @@ fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::R
         };
         // Object-space methods' time and memory do not depend on the size: measured once.
         let mut once: Vec<(&str, f64, Option<u64>)> = Vec::new();
+        let mut failed_once: Vec<&str> = Vec::new();
         for (k, &size) in sizes.iter().enumerate() {
             bar.set_message(format!("{} {size}", bs.name));
             let camera = loaded.camera(size)?;
@@ -1383,15 +1385,30 @@ fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::R
             };
             for &m in &methods {
                 let object = !m.is_image_space();
+                if failed_once.contains(&m.name) {
+                    bar.inc(1);
+                    continue;
+                }
                 let (time_s, peak_rss_kb) = match once.iter().find(|o| o.0 == m.name) {
                     Some(&(_, t, r)) => (t, r),
-                    None => {
-                        let (t, r) = measure_in_child(suite, &dir, &bs.name, m, size)?;
-                        if object {
-                            once.push((m.name, t, r));
+                    None => match measure_in_child(suite, &dir, &bs.name, m, size) {
+                        Ok((t, r)) => {
+                            if object {
+                                once.push((m.name, t, r));
+                            }
+                            (t, r)
                         }
-                        (t, r)
-                    }
+                        // A child killed for memory, say: the other measurements go on.
+                        Err(e) => {
+                            bar.suspend(|| eprintln!("warning: {e}"));
+                            failures += 1;
+                            if object {
+                                failed_once.push(m.name);
+                            }
+                            bar.inc(1);
+                            continue;
+                        }
+                    },
                 };
                 let error = if benchmark::is_exact_object(m) {
                     0.0
@@ -1480,6 +1497,11 @@ fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::R
         out_dir.join("results.json").display(),
         plotted.len()
     );
+    if failures > 0 {
+        return Err(sightline::Error::Output(format!(
+            "{failures} measurement(s) failed (see the warnings above); the results hold the others"
+        )));
+    }
     Ok(())
 }
 

@@ -379,8 +379,8 @@ pub fn csv(rows: &[Row]) -> String {
     out
 }
 
-/// Per scene and image-space or approximate method: the smallest size from which the exact
-/// method (`coverage`) is faster than it at that size and every larger size measured.
+/// Per scene and image-space (raster) method: the smallest size from which the exact method
+/// (`coverage`) is faster than it at that size and every larger size measured.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Crossover {
     /// The scene.
@@ -419,9 +419,7 @@ pub fn crossovers(rows: &[Row]) -> Vec<Crossover> {
         };
         let mut methods: Vec<&'static str> = Vec::new();
         for r in rows.iter().filter(|r| r.scene == scene) {
-            if r.method != EXACT_REFERENCE
-                && !(r.exact && r.engine == "object")
-                && !methods.contains(&r.method)
+            if r.engine == "image" && !methods.contains(&r.method)
             {
                 methods.push(r.method);
             }
@@ -573,6 +571,7 @@ mod tests {
             row("a", "zbuffer", "image", true, 512, 1.5),
             row("a", "scanline", "image", true, 64, 0.1),
             row("a", "bsp", "object", true, 64, 9.0),
+            row("a", "painter", "object", false, 64, 9.0),
         ];
         let c = crossovers(&rows);
         assert_eq!(c.len(), 2);

@@ -1,6 +1,6 @@
 //! Plots of error against time, log-log, one figure per scene: one curve per measured method
 //! (a point per size, labelled with the size), a vertical line at each exact object-space
-//! method's time (its error is 0, which a log axis cannot show), and a ring on each measured
+//! method's time (its error is 0, which a log axis cannot show), and a ring on each image-space
 //! method's point at the smallest size from which the exact method (`coverage`) is faster.
 //!
 //! Text needs a font: a TrueType sans-serif font of the system (DejaVu Sans, Liberation Sans,
