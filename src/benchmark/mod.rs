@@ -419,8 +419,7 @@ pub fn crossovers(rows: &[Row]) -> Vec<Crossover> {
         };
         let mut methods: Vec<&'static str> = Vec::new();
         for r in rows.iter().filter(|r| r.scene == scene) {
-            if r.engine == "image" && !methods.contains(&r.method)
-            {
+            if r.engine == "image" && !methods.contains(&r.method) {
                 methods.push(r.method);
             }
         }
