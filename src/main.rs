@@ -92,7 +92,7 @@ enum Command {
     Compare(CompareArgs),
     /// Time each stage (load, project + cull, then one method) and report triangles per second.
     #[command(
-        after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024\n  sightline bench --soup 1000 --method coverage --repeat 3\n  sightline bench --sphere 100000 --method warnock --size 4096x4096\n  sightline bench --suite generated --methods all --sizes 256,512,1024,2048 --out bench-out\n  sightline bench --suite fixtures --methods zbuffer,coverage,painter --sizes 64,128 --out out\n\nWith --suite: every method on every scene of the suite at every size (square images), written\nto --out as results.csv, results.json and one plot per scene (plot-SCENE.svg and .png) of\nerror (fraction of the image area given to the wrong face) against time, log-log."
+        after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024\n  sightline bench --soup 1000 --method coverage --repeat 3\n  sightline bench --sphere 100000 --method warnock --size 4096x4096\n  sightline bench --suite generated --methods zbuffer,scanline,coverage,painter --sizes 256,512,1024,2048 --out bench-out\n  sightline bench --suite fixtures --methods zbuffer,coverage,painter --sizes 64,128 --out out\n\nWith --suite: every method on every scene of the suite at every size (square images), written\nto --out as results.csv, results.json and one plot per scene (plot-SCENE.svg and .png) of\nerror (fraction of the image area given to the wrong face) against time, log-log."
     )]
     Bench(BenchArgs),
     /// One measurement of `bench --suite`, in a child process: prints one JSON line.
