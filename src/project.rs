@@ -47,6 +47,8 @@ pub struct ScreenPoly {
     pub face: u32,
     /// Provenance: the input face id.
     pub id: FaceId,
+    /// Index into `Scene::meshes` of the face's mesh.
+    pub mesh: u32,
     /// Index of its first corner in `ScreenScene::points` (and `sides`).
     pub start: u32,
     /// Number of corners.
@@ -492,6 +494,7 @@ pub fn project(
         let poly = ScreenPoly {
             face: fi as u32,
             id: face.id,
+            mesh: face.mesh,
             start: start as u32,
             len: (points.len() - start) as u32,
             plane,

@@ -593,7 +593,7 @@ mod tests {
         assert_eq!(png.check(&shiny).unwrap().name, "zbuffer");
         assert_eq!(
             RenderOptions::new(Output::Svg).check(&lights).unwrap().name,
-            "coverage"
+            "auto"
         );
     }
 

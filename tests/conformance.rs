@@ -134,3 +134,36 @@ fn the_painter_is_marked_approximate_because_it_is_wrong_on_cyclic_bars() {
     let c = compare_ids(&want, &got, 96, 80);
     assert!(c.interior > 0 && c.interior_mismatch > 0, "{c:?}");
 }
+
+/// `auto` skips what a scene does not need and says so: a closed sphere seen from outside is one
+/// mesh whose front faces cover its outline once, so its pieces are placed whole with no depth
+/// comparison at all; interlocked tori overlap on screen and go to the coverage map. Either way
+/// the visible set is the coverage map's (exact symmetric difference empty).
+#[test]
+fn auto_places_a_convex_mesh_whole_and_orders_what_overlaps() {
+    use sightline::scene::primitives::{interlocked_tori, sphere_scene};
+    let auto = method("auto").unwrap();
+    let Engine::Object(auto) = auto.engine else {
+        panic!("auto is an object-space method")
+    };
+    for (name, scene, whole) in [
+        ("sphere", sphere_scene(2000), true),
+        ("interlocked tori", interlocked_tori(16, 8), false),
+    ] {
+        let camera = Camera::fit(NamedView::Iso, scene.bounds().unwrap(), false, 40.0, 96, 80);
+        let screen = prepare(&scene, &camera, CullMode::Auto).screen;
+        let got = auto.visible_set(&screen, &|_| false, None);
+        let want = CoverageMap.visible_set(&screen, &|_| false, None);
+        assert!(got.symmetric_difference(&want).is_empty(), "{name}");
+        let placed = got.stats["pieces_placed_whole"].as_u64().unwrap();
+        let order = got.stats["stage_order"].as_str().unwrap();
+        if whole {
+            assert_eq!(placed as usize, got.pieces.len(), "{name}: {order}");
+            assert_eq!(got.stats["overlap_tests"], 0, "{name}");
+            assert!(order.contains("nothing left to order"), "{name}: {order}");
+        } else {
+            assert_eq!(placed, 0, "{name}: {order}");
+            assert!(order.contains("done where pieces meet"), "{name}: {order}");
+        }
+    }
+}

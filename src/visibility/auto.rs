@@ -20,8 +20,10 @@
 //! PROGRESS.md). Invariant: the visible set is the coverage map's.
 
 use super::coverage_map::coverage_of;
+use super::tiling::tiles_convex_region_once;
 use super::visible_set::{Stats, VisibleSet};
 use super::{CoverageMap, Strategy, initial_pieces, translucent_polygons};
+use crate::exact::polygon::Piece;
 use crate::exact::predicates::fallback_count;
 use crate::progress::Report;
 use crate::project::ScreenScene;
@@ -81,20 +83,47 @@ impl Strategy for Auto {
         }
         stage("blend", "skipped: every face is opaque".into());
         let pieces = initial_pieces(screen);
-        let n = pieces.len();
-        let coverage = coverage_of(screen, pieces, report);
+        let whole = whole_meshes(screen);
+        let (mut visible, overlapping): (Vec<Piece>, Vec<Piece>) = pieces
+            .into_iter()
+            .partition(|p| whole.placed[screen.polys[p.poly as usize].mesh as usize]);
+        let placed = visible.len();
+        let n = overlapping.len();
+        let coverage = coverage_of(screen, overlapping, report);
         let cs = coverage.stats.clone();
-        let visible = coverage.into_pieces();
+        visible.extend(coverage.into_pieces());
+        let whole_meshes = whole.placed.iter().filter(|&&w| w).count();
+        for (k, v) in [
+            ("meshes_on_screen", whole.on_screen),
+            ("meshes_apart", whole.apart),
+            ("meshes_placed_whole", whole_meshes),
+            ("pieces_placed_whole", placed),
+        ] {
+            stats.insert(k.into(), v.into());
+        }
         let mut stage = |k: &str, v: String| {
             stats.insert(format!("stage_{k}"), v.into());
         };
+        let skipped = match whole_meshes {
+            0 => String::new(),
+            m => format!(
+                "skipped for {} of {} on screen ({}: apart from the others on screen, faces \
+                 covering their outline once); ",
+                count(m, "mesh", "meshes"),
+                whole.on_screen,
+                count(placed, "piece placed whole", "pieces placed whole")
+            ),
+        };
         stage(
             "order",
-            if cs.overlap_tests == 0 {
-                format!("skipped: none of the {n} pieces meets another on screen")
+            if n == 0 {
+                format!("{skipped}nothing left to order")
+            } else if cs.overlap_tests == 0 {
+                format!("{skipped}skipped: none of the other {n} pieces meets another on screen")
             } else {
                 format!(
-                    "done where pieces meet on screen: {} for {}, {} cut back by nearer ones",
+                    "{skipped}done where pieces meet on screen: {} for {}, {} cut back by nearer \
+                     ones",
                     count(
                         cs.overlap_tests,
                         "exact overlap test",
@@ -133,4 +162,62 @@ impl Strategy for Auto {
 /// `n` and the noun in its number: "1 piece", "2 pieces".
 fn count(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
+}
+
+/// Which meshes need no ordering at all: see [`whole_meshes`].
+struct WholeMeshes {
+    /// Per mesh (index into `Scene::meshes`): its pieces are visible whole.
+    placed: Vec<bool>,
+    /// Meshes with a polygon on screen.
+    on_screen: usize,
+    /// Of those, the ones whose screen box meets no other's.
+    apart: usize,
+}
+
+/// The meshes whose pieces are all visible whole: the mesh's screen box (exact, from its grid
+/// corners) overlaps no other mesh's, and its polygons cover their outline exactly once
+/// ([`tiles_convex_region_once`]: a convex closed mesh once culled, or any mesh seen so that
+/// its faces do not overlap). Then no other piece can meet them, nor they each other.
+fn whole_meshes(screen: &ScreenScene) -> WholeMeshes {
+    let meshes = screen
+        .polys
+        .iter()
+        .map(|p| p.mesh as usize + 1)
+        .max()
+        .unwrap_or(0);
+    let mut boxes = vec![[i64::MAX, i64::MAX, i64::MIN, i64::MIN]; meshes];
+    let mut polys_of: Vec<Vec<u32>> = vec![Vec::new(); meshes];
+    for (k, p) in screen.polys.iter().enumerate() {
+        let b = &mut boxes[p.mesh as usize];
+        for c in screen.corners(p) {
+            *b = [b[0].min(c.x), b[1].min(c.y), b[2].max(c.x), b[3].max(c.y)];
+        }
+        polys_of[p.mesh as usize].push(k as u32);
+    }
+    // Sweep the boxes by left edge: a mesh is crowded when its box's interior meets another's.
+    let mut order: Vec<usize> = (0..meshes).filter(|&m| !polys_of[m].is_empty()).collect();
+    order.sort_by_key(|&m| (boxes[m][0], m));
+    let mut crowded = vec![false; meshes];
+    let mut active: Vec<usize> = Vec::new();
+    for &m in &order {
+        let b = boxes[m];
+        active.retain(|&a| boxes[a][2] > b[0]);
+        for &a in &active {
+            if boxes[a][1] < b[3] && b[1] < boxes[a][3] {
+                crowded[a] = true;
+                crowded[m] = true;
+            }
+        }
+        active.push(m);
+    }
+    let placed: Vec<bool> = (0..meshes)
+        .map(|m| {
+            !polys_of[m].is_empty() && !crowded[m] && tiles_convex_region_once(screen, &polys_of[m])
+        })
+        .collect();
+    WholeMeshes {
+        placed,
+        on_screen: order.len(),
+        apart: order.iter().filter(|&&m| !crowded[m]).count(),
+    }
 }

@@ -28,6 +28,7 @@ pub(crate) mod grid;
 pub(crate) mod live;
 pub mod newell;
 pub mod painter;
+pub mod tiling;
 pub mod visible_set;
 pub mod warnock_exact;
 pub mod weiler_atherton;

@@ -85,6 +85,7 @@ mod tests {
             s.polys.push(ScreenPoly {
                 face: k as u32,
                 id: *id,
+                mesh: 0,
                 start,
                 len: 3,
                 plane,

@@ -132,6 +132,7 @@ fn sliver_scene() -> ScreenScene {
         screen.polys.push(ScreenPoly {
             face: face as u32,
             id,
+            mesh: 0,
             start,
             len: corners.len() as u32,
             plane: Plane::of_polygon(pts).unwrap(),
