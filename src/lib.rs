@@ -55,6 +55,7 @@ pub use methods::{METHODS, Method};
 pub use render::RenderOptions;
 pub use scene::{Face, FaceId, Material, Mesh, Scene, load};
 pub use visibility::{Strategy, VisibleSet};
+pub mod benchmark;
 pub mod camera;
 pub mod draw;
 pub mod exact;

@@ -92,9 +92,12 @@ enum Command {
     Compare(CompareArgs),
     /// Time each stage (load, project + cull, then one method) and report triangles per second.
     #[command(
-        after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024\n  sightline bench --soup 1000 --method coverage --repeat 3\n  sightline bench --sphere 100000 --method warnock --size 4096x4096"
+        after_help = "Examples:\n  sightline bench fixtures/cube.obj --repeat 20\n  sightline bench --sphere 1000000 --size 1024x1024\n  sightline bench --soup 1000 --method coverage --repeat 3\n  sightline bench --sphere 100000 --method warnock --size 4096x4096\n  sightline bench --suite generated --methods zbuffer,scanline,coverage,painter --sizes 256,512,1024,2048 --out bench-out\n  sightline bench --suite fixtures --methods zbuffer,coverage,painter --sizes 64,128 --out out\n\nWith --suite: every method on every scene of the suite at every size (square images), written\nto --out as results.csv, results.json and one plot per scene (plot-SCENE.svg and .png) of\nerror (fraction of the image area given to the wrong face) against time, log-log."
     )]
     Bench(BenchArgs),
+    /// One measurement of `bench --suite`, in a child process: prints one JSON line.
+    #[command(hide = true)]
+    BenchOne(BenchOneArgs),
     /// Draw the scene's feature lines (silhouettes, boundaries, intersections, creases,
     /// material edges), visible ones solid and hidden ones dashed, as SVG, JSON, DXF or PDF.
     #[command(after_help = LINES_EXAMPLES)]
@@ -302,8 +305,26 @@ struct InfoArgs {
 #[derive(Args)]
 struct BenchArgs {
     /// Scene file (omit with --sphere).
-    #[arg(required_unless_present_any = ["sphere", "soup", "tori"])]
+    #[arg(required_unless_present_any = ["sphere", "soup", "tori", "suite"])]
     input: Option<PathBuf>,
+    /// Instead of one scene, a suite: every method of --methods on every scene at every size of
+    /// --sizes, written to --out (fixtures: fixtures/, iso view or NAME.cam; generated: soups, tori, a
+    /// sphere; meshes: ../shared/meshes/*.obj[.gz] with cams/NAME.cam).
+    #[arg(long, value_enum, conflicts_with_all = ["input", "sphere", "soup", "tori", "lines"], requires = "out")]
+    suite: Option<sightline::benchmark::Suite>,
+    /// With --suite: `all`, or registered method names, comma-separated.
+    #[arg(long, value_parser = parse_methods, default_value = "all", requires = "suite")]
+    methods: MethodList,
+    /// With --suite: square image sides, comma-separated, increasing.
+    #[arg(long, value_parser = parse_sizes, default_value = "256,512,1024,2048,4096", requires = "suite", allow_hyphen_values = true)]
+    sizes: SizeList,
+    /// With --suite: the folder the results and plots are written to (created if missing).
+    #[arg(long, value_name = "DIR", requires = "suite")]
+    out: Option<PathBuf>,
+    /// With --suite: the folder of the suite's scene files (default fixtures/ for fixtures,
+    /// ../shared/meshes for meshes).
+    #[arg(long, value_name = "DIR", requires = "suite")]
+    dir: Option<PathBuf>,
     /// Read the input as this format, whatever its extension.
     #[arg(long, value_enum)]
     format: Option<Format>,
@@ -328,6 +349,36 @@ struct BenchArgs {
     lines: bool,
     #[command(flatten)]
     camera: CameraArgs,
+}
+
+/// `--methods` of `bench --suite`.
+#[derive(Clone)]
+struct MethodList(Vec<&'static Method>);
+
+fn parse_methods(s: &str) -> Result<MethodList, String> {
+    sightline::benchmark::parse_methods(s).map(MethodList)
+}
+
+/// `--sizes` of `bench --suite`.
+#[derive(Clone)]
+struct SizeList(Vec<u32>);
+
+fn parse_sizes(s: &str) -> Result<SizeList, String> {
+    sightline::benchmark::parse_sizes(s).map(SizeList)
+}
+
+#[derive(Args)]
+struct BenchOneArgs {
+    #[arg(long, value_enum)]
+    suite: sightline::benchmark::Suite,
+    #[arg(long)]
+    scene: String,
+    #[arg(long, value_parser = method_arg())]
+    method: &'static Method,
+    #[arg(long)]
+    size: u32,
+    #[arg(long)]
+    dir: Option<PathBuf>,
 }
 
 const SHEET_EXAMPLES: &str = "\
@@ -504,7 +555,11 @@ fn main() -> ExitCode {
         Command::Render(a) => render(a),
         Command::Info(a) => info(a),
         Command::Compare(a) => compare(a),
-        Command::Bench(a) => bench(a),
+        Command::Bench(a) => match a.suite {
+            Some(suite) => bench_suite(suite, a),
+            None => bench(a),
+        },
+        Command::BenchOne(a) => bench_one(a),
         Command::Lines(a) => lines(a),
         Command::Sheet(a) => sheet_command(a),
         Command::Stress(a) => stress(a),
@@ -1180,6 +1235,273 @@ fn lines(a: LinesArgs) -> sightline::Result<()> {
     };
     write_with(&a.output, |w| w.write_all(&bytes))?;
     eprintln!("{}", stroke_summary(drawing));
+    Ok(())
+}
+
+/// The default folder of a suite's scene files.
+fn suite_dir(suite: sightline::benchmark::Suite, dir: Option<&Path>) -> PathBuf {
+    use sightline::benchmark::Suite;
+    match (dir, suite) {
+        (Some(d), _) => d.to_path_buf(),
+        (None, Suite::Meshes) => PathBuf::from("../shared/meshes"),
+        (None, _) => PathBuf::from("fixtures"),
+    }
+}
+
+/// The hidden `bench-one`: loads one scene of a suite, times one method at one size (median of
+/// a few runs) and prints `{"time_s": .., "peak_rss_kb": ..}`, the peak read at its end.
+fn bench_one(a: BenchOneArgs) -> sightline::Result<()> {
+    use sightline::benchmark;
+    let dir = suite_dir(a.suite, a.dir.as_deref());
+    let scenes = benchmark::scenes(a.suite, &dir, &dir)?;
+    let scene = scenes
+        .iter()
+        .find(|s| s.name == a.scene)
+        .ok_or_else(|| sightline::Error::Options(format!("no scene '{}' in the suite", a.scene)))?;
+    let loaded = scene.load()?;
+    let camera = loaded.camera(a.size)?;
+    let time_s = benchmark::time_median(a.method, &loaded.scene, &camera);
+    let line = serde_json::json!({
+        "time_s": time_s,
+        "peak_rss_kb": benchmark::peak_rss_kb(),
+    });
+    println!("{line}");
+    Ok(())
+}
+
+/// Runs `bench-one` in a child process: (median seconds, peak resident kB).
+fn measure_in_child(
+    suite: sightline::benchmark::Suite,
+    dir: &Path,
+    scene: &str,
+    method: &Method,
+    size: u32,
+) -> sightline::Result<(f64, Option<u64>)> {
+    use clap::ValueEnum as _;
+    let fail = |why: String| {
+        sightline::Error::Output(format!(
+            "measuring {} on {scene} at {size}x{size}: {why}",
+            method.name
+        ))
+    };
+    let exe = std::env::current_exe().map_err(|e| fail(format!("no executable path: {e}")))?;
+    let suite_name = suite
+        .to_possible_value()
+        .map_or_else(String::new, |v| v.get_name().to_string());
+    let out = std::process::Command::new(exe)
+        .arg("bench-one")
+        .args([
+            "--suite",
+            &suite_name,
+            "--scene",
+            scene,
+            "--method",
+            method.name,
+        ])
+        .args(["--size", &size.to_string()])
+        .arg("--dir")
+        .arg(dir)
+        .stdin(std::process::Stdio::null())
+        .output()
+        .map_err(|e| fail(format!("could not start the child process: {e}")))?;
+    if !out.status.success() {
+        return Err(fail(format!(
+            "the child process failed ({}): {}",
+            out.status,
+            String::from_utf8_lossy(&out.stderr).trim()
+        )));
+    }
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout)
+        .map_err(|e| fail(format!("unreadable child output: {e}")))?;
+    let time = v["time_s"]
+        .as_f64()
+        .ok_or_else(|| fail("no time in the child output".into()))?;
+    Ok((time, v["peak_rss_kb"].as_u64()))
+}
+
+/// A scene name as a file name part: letters, digits, '-' and '_' kept, the rest '_'.
+fn file_part(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// `bench --suite`: every method on every scene at every size; results.csv, results.json and
+/// one plot per scene in --out.
+fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::Result<()> {
+    use sightline::benchmark::{self, Row, plot, truth};
+    let out_dir = a.out.clone().expect("clap requires --out with --suite");
+    let (methods, sizes) = (a.methods.0, a.sizes.0);
+    let dir = suite_dir(suite, a.dir.as_deref());
+    let scenes = benchmark::scenes(suite, &dir, &dir)?;
+    if scenes.is_empty() {
+        return Err(sightline::Error::Options(format!(
+            "--suite: no scene found in {}",
+            dir.display()
+        )));
+    }
+    // The output folder must be writable before hours of measuring.
+    let unwritable = |e: std::io::Error| sightline::Error::Io {
+        path: out_dir.display().to_string(),
+        source: e,
+    };
+    std::fs::create_dir_all(&out_dir).map_err(unwritable)?;
+    tempfile::tempfile_in(&out_dir).map_err(unwritable)?;
+
+    let bar = labelled_bar(
+        (scenes.len() * sizes.len() * methods.len()) as u64,
+        "bench",
+        "{pos}/{len}",
+    );
+    let mut rows: Vec<Row> = Vec::new();
+    let mut failures = 0usize;
+    for bs in &scenes {
+        let loaded = match bs.load() {
+            Ok(l) => l,
+            Err(e) => {
+                bar.suspend(|| eprintln!("warning: {}: skipped: {e}", bs.name));
+                bar.inc((sizes.len() * methods.len()) as u64);
+                continue;
+            }
+        };
+        // Object-space methods' time and memory do not depend on the size: measured once.
+        let mut once: Vec<(&str, f64, Option<u64>)> = Vec::new();
+        let mut failed_once: Vec<&str> = Vec::new();
+        for (k, &size) in sizes.iter().enumerate() {
+            bar.set_message(format!("{} {size}", bs.name));
+            let camera = loaded.camera(size)?;
+            let measured = methods.iter().any(|m| !benchmark::is_exact_object(m));
+            let prepared = pipeline::prepare(&loaded.scene, &camera, CullMode::Auto);
+            let rings = if measured {
+                truth::truth_rings(&prepared.screen)
+            } else {
+                Vec::new()
+            };
+            for &m in &methods {
+                let object = !m.is_image_space();
+                if failed_once.contains(&m.name) {
+                    bar.inc(1);
+                    continue;
+                }
+                let (time_s, peak_rss_kb) = match once.iter().find(|o| o.0 == m.name) {
+                    Some(&(_, t, r)) => (t, r),
+                    None => match measure_in_child(suite, &dir, &bs.name, m, size) {
+                        Ok((t, r)) => {
+                            if object {
+                                once.push((m.name, t, r));
+                            }
+                            (t, r)
+                        }
+                        // A child killed for memory, say: the other measurements go on.
+                        Err(e) => {
+                            bar.suspend(|| eprintln!("warning: {e}"));
+                            failures += 1;
+                            if object {
+                                failed_once.push(m.name);
+                            }
+                            bar.inc(1);
+                            continue;
+                        }
+                    },
+                };
+                let error = if benchmark::is_exact_object(m) {
+                    0.0
+                } else {
+                    let ids = m.face_ids(&loaded.scene, &prepared.screen, &camera, None);
+                    truth::error_of(&rings, size, size, &ids)
+                };
+                rows.push(Row {
+                    scene: bs.name.clone(),
+                    method: m.name,
+                    engine: if object { "object" } else { "image" },
+                    exact: m.exact,
+                    size,
+                    time_s,
+                    peak_rss_kb,
+                    error,
+                    reused: object && k > 0,
+                });
+                bar.inc(1);
+            }
+        }
+    }
+    bar.finish_and_clear();
+    write_with(&out_dir.join("results.csv"), |w| {
+        w.write_all(benchmark::csv(&rows).as_bytes())
+    })?;
+    write_with(&out_dir.join("results.json"), |w| {
+        w.write_all(benchmark::json(suite, &sizes, &rows).as_bytes())
+    })?;
+    let crossovers = benchmark::crossovers(&rows);
+    let mut plotted = Vec::new();
+    for bs in &scenes {
+        if !rows.iter().any(|r| r.scene == bs.name) {
+            continue;
+        }
+        match plot::plot_scene(&bs.name, &rows, &crossovers) {
+            Ok((svg, pixels)) => {
+                let base = out_dir.join(format!("plot-{}", file_part(&bs.name)));
+                write_with(&base.with_extension("svg"), |w| w.write_all(svg.as_bytes()))?;
+                let (w, h) = plot::FIGURE;
+                write_with(&base.with_extension("png"), |out| {
+                    png::write_rgb(out, w, h, &pixels)
+                })?;
+                plotted.push(base);
+            }
+            Err(e) => {
+                eprintln!("warning: no plots: {e}");
+                break;
+            }
+        }
+    }
+    // The summary: per scene and method, time and error at each size.
+    for bs in &scenes {
+        let scene_rows: Vec<&Row> = rows.iter().filter(|r| r.scene == bs.name).collect();
+        if scene_rows.is_empty() {
+            continue;
+        }
+        println!("{}:", bs.name);
+        for &m in &methods {
+            let runs: Vec<String> = scene_rows
+                .iter()
+                .filter(|r| r.method == m.name)
+                .map(|r| format!("{} {:.2e} s err {:.2e}", r.size, r.time_s, r.error))
+                .collect();
+            println!("  {:16} {}", m.name, runs.join(", "));
+        }
+        for c in crossovers.iter().filter(|c| c.scene == bs.name) {
+            match c.from_size {
+                Some(s) => println!(
+                    "  {} faster than {} from {s}x{s}",
+                    benchmark::EXACT_REFERENCE,
+                    c.method
+                ),
+                None => println!(
+                    "  {} not faster than {} at any size measured",
+                    benchmark::EXACT_REFERENCE,
+                    c.method
+                ),
+            }
+        }
+    }
+    println!(
+        "wrote {} ({} rows), {} and {} plot(s)",
+        out_dir.join("results.csv").display(),
+        rows.len(),
+        out_dir.join("results.json").display(),
+        plotted.len()
+    );
+    if failures > 0 {
+        return Err(sightline::Error::Output(format!(
+            "{failures} measurement(s) failed (see the warnings above); the results hold the others"
+        )));
+    }
     Ok(())
 }
 
