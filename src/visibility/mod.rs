@@ -61,6 +61,33 @@ pub trait Strategy: Send + Sync {
     ) -> VisibleSet;
 }
 
+/// The visible set of a strategy that resolves opaque pieces only: `resolve` gets the opaque
+/// pieces and returns the visible ones with its counters; translucent polygons are layered over
+/// them as the coverage map layers them (a BSP of their pieces, less what the opaque set hides).
+fn opaque_then_layered(
+    screen: &ScreenScene,
+    translucent: &dyn Fn(u32) -> bool,
+    report: Option<Report>,
+    resolve: impl FnOnce(Vec<Piece>) -> (Vec<Piece>, Stats),
+) -> VisibleSet {
+    let fallbacks = crate::exact::predicates::fallback_count();
+    let layered = translucent_polygons(screen, translucent);
+    let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
+        .into_iter()
+        .partition(|p| layered && translucent(p.poly));
+    let (visible, mut stats) = resolve(opaque);
+    stats.insert("translucent_painter_order".into(), layered.into());
+    let (pieces, layered) = if layered {
+        let mut coverage = coverage::Coverage::of_visible(screen, visible);
+        let (parts, bsp) = bsp::translucent_layer(screen, &mut coverage, see_through, report);
+        stats.insert("translucent_fragments".into(), bsp.fragments.into());
+        (coverage.into_pieces(), parts)
+    } else {
+        (visible, Vec::new())
+    };
+    VisibleSet::exact(screen, pieces, layered, stats, fallbacks)
+}
+
 /// Is any polygon of `screen` translucent?
 fn translucent_polygons(screen: &ScreenScene, translucent: &dyn Fn(u32) -> bool) -> bool {
     (0..screen.polys.len() as u32).any(translucent)

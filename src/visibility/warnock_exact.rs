@@ -20,13 +20,12 @@
 //! carry the area lines they were clipped by as [`Boundary::ScreenSplit`]. Translucent faces are
 //! layered over the result as the coverage map layers them.
 
-use super::bsp::translucent_layer;
-use super::coverage::{Coverage, tie_key};
+use super::coverage::tie_key;
 use super::visible_set::{Stats, VisibleSet};
 use super::weiler_atherton;
-use super::{Strategy, initial_pieces, translucent_polygons};
+use super::{Strategy, opaque_then_layered};
 use crate::exact::polygon::{Boundary, Piece, Split};
-use crate::exact::predicates::{Line, fallback_count};
+use crate::exact::predicates::Line;
 use crate::exact::{Plane, w256};
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
@@ -65,32 +64,20 @@ impl Strategy for WarnockExact {
         translucent: &dyn Fn(u32) -> bool,
         report: Option<Report>,
     ) -> VisibleSet {
-        let fallbacks = fallback_count();
-        let layered = translucent_polygons(screen, translucent);
-        let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
-            .into_iter()
-            .partition(|p| layered && translucent(p.poly));
-        let (visible, st) = visible_pieces(screen, &opaque, report);
-        let mut stats = Stats::new();
-        for (k, v) in [
-            ("areas", st.areas),
-            ("areas_settled", st.settled),
-            ("leaves_clipped", st.leaves),
-            ("hidden_in_areas", st.hidden),
-            ("deepest_area", st.deepest),
-        ] {
-            stats.insert(k.into(), v.into());
-        }
-        stats.insert("translucent_painter_order".into(), layered.into());
-        let (pieces, layered) = if layered {
-            let mut coverage = Coverage::of_visible(screen, visible);
-            let (parts, bsp) = translucent_layer(screen, &mut coverage, see_through, report);
-            stats.insert("translucent_fragments".into(), bsp.fragments.into());
-            (coverage.into_pieces(), parts)
-        } else {
-            (visible, Vec::new())
-        };
-        VisibleSet::exact(screen, pieces, layered, stats, fallbacks)
+        opaque_then_layered(screen, translucent, report, |opaque| {
+            let (visible, st) = visible_pieces(screen, &opaque, report);
+            let mut stats = Stats::new();
+            for (k, v) in [
+                ("areas", st.areas),
+                ("areas_settled", st.settled),
+                ("leaves_clipped", st.leaves),
+                ("hidden_in_areas", st.hidden),
+                ("deepest_area", st.deepest),
+            ] {
+                stats.insert(k.into(), v.into());
+            }
+            (visible, stats)
+        })
     }
 }
 

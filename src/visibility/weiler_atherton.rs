@@ -22,15 +22,13 @@
 //! is a set of them); clipping is exact line by line ([`clip`]), with no f64 vertex anywhere.
 //! Invariant: the pieces written out are disjoint, each is in its own polygon, and at every point
 //! of one no polygon is nearer. Translucent faces are layered over the result as the coverage map
-//! layers them ([`translucent_layer`]).
+//! layers them ([`super::bsp::translucent_layer`]).
 
-use super::bsp::translucent_layer;
-use super::coverage::{Coverage, clip, tie_key};
+use super::coverage::{clip, tie_key};
 use super::live::{Live, bounds};
 use super::visible_set::{Stats, VisibleSet};
-use super::{Strategy, initial_pieces, translucent_polygons};
+use super::{Strategy, opaque_then_layered};
 use crate::exact::polygon::{Piece, Split, separated};
-use crate::exact::predicates::fallback_count;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use std::collections::HashMap;
@@ -61,32 +59,20 @@ impl Strategy for WeilerAtherton {
         translucent: &dyn Fn(u32) -> bool,
         report: Option<Report>,
     ) -> VisibleSet {
-        let fallbacks = fallback_count();
-        let layered = translucent_polygons(screen, translucent);
-        let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
-            .into_iter()
-            .partition(|p| layered && translucent(p.poly));
-        let (visible, st) = visible_pieces(screen, opaque, report);
-        let mut stats = Stats::new();
-        for (k, v) in [
-            ("clip_polygons", st.clip_polygons),
-            ("clipped", st.clipped),
-            ("hidden_parts", st.hidden),
-            ("recursions", st.recursions),
-            ("deepest_recursion", st.deepest),
-        ] {
-            stats.insert(k.into(), v.into());
-        }
-        stats.insert("translucent_painter_order".into(), layered.into());
-        let (pieces, layered) = if layered {
-            let mut coverage = Coverage::of_visible(screen, visible);
-            let (parts, bsp) = translucent_layer(screen, &mut coverage, see_through, report);
-            stats.insert("translucent_fragments".into(), bsp.fragments.into());
-            (coverage.into_pieces(), parts)
-        } else {
-            (visible, Vec::new())
-        };
-        VisibleSet::exact(screen, pieces, layered, stats, fallbacks)
+        opaque_then_layered(screen, translucent, report, |opaque| {
+            let (visible, st) = visible_pieces(screen, opaque, report);
+            let mut stats = Stats::new();
+            for (k, v) in [
+                ("clip_polygons", st.clip_polygons),
+                ("clipped", st.clipped),
+                ("hidden_parts", st.hidden),
+                ("recursions", st.recursions),
+                ("deepest_recursion", st.deepest),
+            ] {
+                stats.insert(k.into(), v.into());
+            }
+            (visible, stats)
+        })
     }
 }
 
