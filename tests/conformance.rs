@@ -163,7 +163,26 @@ fn auto_places_a_convex_mesh_whole_and_orders_what_overlaps() {
             assert!(order.contains("nothing left to order"), "{name}: {order}");
         } else {
             assert_eq!(placed, 0, "{name}: {order}");
-            assert!(order.contains("done where pieces meet"), "{name}: {order}");
+            assert!(order.contains("done by the coverage map"), "{name}: {order}");
         }
     }
+}
+
+/// `auto` hands a soup of large crossing triangles to Warnock's subdivision (the coverage map
+/// cuts each far piece by every nearer one there), and says so; the set is the map's.
+#[test]
+fn auto_subdivides_a_soup_of_large_crossing_faces() {
+    use sightline::scene::primitives::random_triangle_soup;
+    let Engine::Object(auto) = method("auto").unwrap().engine else {
+        panic!("auto is an object-space method")
+    };
+    let scene = random_triangle_soup(200, 3);
+    let camera = Camera::fit(NamedView::Iso, scene.bounds().unwrap(), false, 40.0, 96, 80);
+    let screen = prepare(&scene, &camera, CullMode::Auto).screen;
+    let got = auto.visible_set(&screen, &|_| false, None);
+    let want = CoverageMap.visible_set(&screen, &|_| false, None);
+    assert!(got.symmetric_difference(&want).is_empty());
+    let order = got.stats["stage_order"].as_str().unwrap();
+    assert!(order.contains("Warnock"), "{order}");
+    assert!(got.stats["depth_complexity_estimate"].as_f64().unwrap() > 8.0);
 }

@@ -14,14 +14,17 @@
 //! - **blend**: translucent faces need the exact back-to-front order of their fragments (a BSP of
 //!   their pieces, layered over the opaque visible set).
 //!
-//! So far the choice is within the coverage map (the fastest exact strategy on every scene
-//! measured); the scene analysis that would hand parts of a scene to other strategies (a convex
-//! mesh's faces tiling its silhouette once, depth-separable groups) is the next step (see
-//! PROGRESS.md). Invariant: the visible set is the coverage map's.
+//! Which strategy orders what overlaps: the coverage map, unless the overlapping pieces are a
+//! soup of large crossing faces ([`depth_complexity`] above [`SUBDIVIDE_ABOVE_DEPTH`]), where
+//! Warnock's subdivision at object precision drops far pieces wholesale behind surrounding
+//! ones instead of cutting them by every nearer piece. Not yet: depth-separable groups handed
+//! to Newell's sort, per-group choices (see PROGRESS.md). Invariant: the visible set is the
+//! coverage map's, so the drawing's bytes are the same whichever strategy ran.
 
 use super::coverage_map::coverage_of;
 use super::tiling::tiles_convex_region_once;
 use super::visible_set::{Stats, VisibleSet};
+use super::warnock_exact;
 use super::{CoverageMap, Strategy, initial_pieces, translucent_polygons};
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::fallback_count;
@@ -89,9 +92,8 @@ impl Strategy for Auto {
             .partition(|p| whole.placed[screen.polys[p.poly as usize].mesh as usize]);
         let placed = visible.len();
         let n = overlapping.len();
-        let coverage = coverage_of(screen, overlapping, report);
-        let cs = coverage.stats.clone();
-        visible.extend(coverage.into_pieces());
+        let depth = depth_complexity(&overlapping);
+        stats.insert("depth_complexity_estimate".into(), depth.into());
         let whole_meshes = whole.placed.iter().filter(|&&w| w).count();
         for (k, v) in [
             ("meshes_on_screen", whole.on_screen),
@@ -101,9 +103,6 @@ impl Strategy for Auto {
         ] {
             stats.insert(k.into(), v.into());
         }
-        let mut stage = |k: &str, v: String| {
-            stats.insert(format!("stage_{k}"), v.into());
-        };
         let skipped = match whole_meshes {
             0 => String::new(),
             m => format!(
@@ -114,6 +113,49 @@ impl Strategy for Auto {
                 count(placed, "piece placed whole", "pieces placed whole")
             ),
         };
+        if n > 0 && depth > SUBDIVIDE_ABOVE_DEPTH {
+            // Large faces crossing many others (a soup): the coverage map would cut each far
+            // piece by every nearer one before all of it vanished; Warnock's subdivision drops
+            // it wherever one surrounding face hides it.
+            let (pieces, ws) = warnock_exact::visible_pieces(screen, &overlapping, report);
+            visible.extend(pieces);
+            let mut stage = |k: &str, v: String| {
+                stats.insert(format!("stage_{k}"), v.into());
+            };
+            stage(
+                "order",
+                format!(
+                    "{skipped}done by Warnock's subdivision at object precision for {}: \
+                     estimated depth complexity {depth:.1} (their number times the median \
+                     screen box, over the box of all) is above {SUBDIVIDE_ABOVE_DEPTH}; {} settled by one \
+                     surrounding face in front, {} hidden pieces dropped",
+                    count(n, "overlapping piece", "overlapping pieces"),
+                    count(ws.settled, "area", "areas"),
+                    ws.hidden
+                ),
+            );
+            stage(
+                "split",
+                format!(
+                    "done only in {} (clipped exactly, Weiler-Atherton)",
+                    count(ws.leaves, "small area", "small areas")
+                ),
+            );
+            for (k, v) in [
+                ("areas", ws.areas),
+                ("areas_settled", ws.settled),
+                ("leaves_clipped", ws.leaves),
+            ] {
+                stats.insert(k.into(), v.into());
+            }
+            return VisibleSet::exact(screen, visible, Vec::new(), stats, fallbacks);
+        }
+        let coverage = coverage_of(screen, overlapping, report);
+        let cs = coverage.stats.clone();
+        visible.extend(coverage.into_pieces());
+        let mut stage = |k: &str, v: String| {
+            stats.insert(format!("stage_{k}"), v.into());
+        };
         stage(
             "order",
             if n == 0 {
@@ -122,8 +164,8 @@ impl Strategy for Auto {
                 format!("{skipped}skipped: none of the other {n} pieces meets another on screen")
             } else {
                 format!(
-                    "{skipped}done where pieces meet on screen: {} for {}, {} cut back by nearer \
-                     ones",
+                    "{skipped}done by the coverage map where pieces meet on screen (estimated \
+                     depth complexity {depth:.1}): {} for {}, {} cut back by nearer ones",
                     count(
                         cs.overlap_tests,
                         "exact overlap test",
@@ -157,6 +199,43 @@ impl Strategy for Auto {
         }
         VisibleSet::exact(screen, visible, Vec::new(), stats, fallbacks)
     }
+}
+
+/// Above this estimated depth complexity ([`depth_complexity`]) the overlapping pieces go to
+/// Warnock's subdivision at object precision rather than the coverage map. Measured (bench
+/// --repeat 3, one run): soups of 100, 300 and 1,000 large triangles (estimates far above 8)
+/// took 0.024, 0.12 and 0.57 s there against 0.054, 0.44 and 5.0 s in the map; meshes are 1.6
+/// to 6 times faster in the map (samurai_monastery 10.3 s against 16.6 s: its mean-box estimate
+/// is 39, from a few huge faces, its median-box estimate small).
+pub const SUBDIVIDE_ABOVE_DEPTH: f64 = 8.0;
+
+/// How many pieces lie over a point, estimated from boxes as if every piece had the median
+/// piece's box: the piece count times the median box area, over the area of the box of all.
+/// Large for a soup of large crossing faces, small for meshes even when a few huge faces
+/// (a ground plane, walls) lie under everything, which a mean would count. A choice of method,
+/// never a decision about what is visible.
+pub fn depth_complexity(pieces: &[Piece]) -> f64 {
+    let mut all = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+    let mut areas: Vec<f64> = pieces
+        .iter()
+        .map(|p| {
+            let b = p.bounds();
+            all = [
+                all[0].min(b[0]),
+                all[1].min(b[1]),
+                all[2].max(b[2]),
+                all[3].max(b[3]),
+            ];
+            (b[2] - b[0]).max(0.0) * (b[3] - b[1]).max(0.0)
+        })
+        .collect();
+    let area = (all[2] - all[0]) * (all[3] - all[1]);
+    if areas.is_empty() || area <= 0.0 {
+        return 0.0;
+    }
+    let mid = areas.len() / 2;
+    let (_, median, _) = areas.select_nth_unstable_by(mid, f64::total_cmp);
+    pieces.len() as f64 * *median / area
 }
 
 /// `n` and the noun in its number: "1 piece", "2 pieces".
