@@ -163,7 +163,10 @@ fn auto_places_a_convex_mesh_whole_and_orders_what_overlaps() {
             assert!(order.contains("nothing left to order"), "{name}: {order}");
         } else {
             assert_eq!(placed, 0, "{name}: {order}");
-            assert!(order.contains("done by the coverage map"), "{name}: {order}");
+            assert!(
+                order.contains("done by the coverage map"),
+                "{name}: {order}"
+            );
         }
     }
 }
