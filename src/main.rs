@@ -34,7 +34,6 @@ use sightline::methods::{self, METHODS, Method, Output};
 use sightline::output::{png, write_with};
 use sightline::pipeline::{self, Fill};
 use sightline::project::CullMode;
-use sightline::raster::renderer::RasterOptions;
 use sightline::render::{self, Background, RenderOptions};
 use sightline::report::SceneReport;
 use sightline::scene::{self, CameraLights, DEFAULT_SHININESS, Format, Light, Scene, SceneLights};
@@ -911,18 +910,9 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
         let t = Instant::now();
         let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
         project_times.push(t.elapsed().as_secs_f64());
-        // Shaded paints, so that translucent faces take the path they take in `render`.
-        let paints =
-            sightline::paint::screen_paints(&scene, &prepared.screen, &camera, Fill::Shade);
-        let options = RasterOptions {
-            paints: &paints,
-            background: [1.0; 3],
-            blend: true,
-            depth: false,
-        };
-        let t = Instant::now();
-        let computed = render::compute(a.method, &prepared.screen, &options, None);
-        method_times.push(t.elapsed().as_secs_f64());
+        let (seconds, computed) =
+            sightline::benchmark::timed_compute(a.method, &scene, &prepared.screen, &camera);
+        method_times.push(seconds);
         report = computed.detail();
         screen_stats = Some(prepared.screen.stats);
         bar.set_position(k as u64 + 1);

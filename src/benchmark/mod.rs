@@ -285,8 +285,14 @@ pub fn parse_sizes(s: &str) -> std::result::Result<Vec<u32>, String> {
 }
 
 /// One timed run: the method's computation on `screen`, as `sightline bench` runs it (shaded
-/// paints, blending on), in seconds.
-pub fn time_once(method: &Method, scene: &Scene, screen: &ScreenScene, camera: &Camera) -> f64 {
+/// paints, so that translucent faces take the path they take in `render`; blending on), in
+/// seconds, with what it computed.
+pub fn timed_compute(
+    method: &Method,
+    scene: &Scene,
+    screen: &ScreenScene,
+    camera: &Camera,
+) -> (f64, crate::render::Computed) {
     let paints = screen_paints(scene, screen, camera, Fill::Shade);
     let options = RasterOptions {
         paints: &paints,
@@ -296,9 +302,12 @@ pub fn time_once(method: &Method, scene: &Scene, screen: &ScreenScene, camera: &
     };
     let t = Instant::now();
     let computed = crate::render::compute(method, screen, &options, None);
-    let s = t.elapsed().as_secs_f64();
-    drop(computed);
-    s
+    (t.elapsed().as_secs_f64(), computed)
+}
+
+/// [`timed_compute`]'s time only.
+pub fn time_once(method: &Method, scene: &Scene, screen: &ScreenScene, camera: &Camera) -> f64 {
+    timed_compute(method, scene, screen, camera).0
 }
 
 /// The median time of `method` on `scene` at `camera`: up to 5 runs, fewer when a run takes
