@@ -93,7 +93,7 @@ pub fn colorize_painted(
 /// Do the screen bounding boxes of any two polygons overlap with positive area? (Newell's first
 /// two tests fail for some pair: depth order matters.) Sweep over x; stops at the first pair.
 pub fn screen_extents_overlap(screen: &ScreenScene) -> bool {
-    let mut boxes: Vec<[i64; 4]> = screen
+    let boxes: Vec<[i64; 4]> = screen
         .polys
         .iter()
         .map(|p| {
@@ -105,16 +105,12 @@ pub fn screen_extents_overlap(screen: &ScreenScene) -> bool {
             b
         })
         .collect();
-    boxes.sort_unstable();
-    let mut active: Vec<[i64; 4]> = Vec::new();
-    for b in boxes {
-        active.retain(|a| a[2] > b[0]);
-        if active.iter().any(|a| a[1] < b[3] && b[1] < a[3]) {
-            return true;
-        }
-        active.push(b);
-    }
-    false
+    let mut overlap = false;
+    crate::visibility::grid::sweep_overlapping(&boxes, |_, _| {
+        overlap = true;
+        false
+    });
+    overlap
 }
 
 /// How two face-id images differ.

@@ -22,8 +22,9 @@
 //! coverage map's, so the drawing's bytes are the same whichever strategy ran.
 
 use super::coverage_map::coverage_of;
+use super::grid::sweep_overlapping;
 use super::tiling::tiles_convex_region_once;
-use super::visible_set::{Stats, VisibleSet};
+use super::visible_set::{Stats, VisibleSet, put_counts};
 use super::warnock_exact;
 use super::{CoverageMap, Strategy, initial_pieces, translucent_polygons};
 use crate::exact::polygon::Piece;
@@ -44,11 +45,9 @@ impl Strategy for Auto {
     ) -> VisibleSet {
         let fallbacks = fallback_count();
         let mut stats = Stats::new();
-        let mut stage = |k: &str, v: String| {
-            stats.insert(format!("stage_{k}"), v.into());
-        };
         let ps = &screen.stats;
         stage(
+            &mut stats,
             "cull",
             if ps.culled_meshes > 0 {
                 format!(
@@ -66,6 +65,7 @@ impl Strategy for Auto {
                 .filter(|&k| translucent(k))
                 .count();
             stage(
+                &mut stats,
                 "blend",
                 format!(
                     "done: {} layered back to front",
@@ -73,10 +73,12 @@ impl Strategy for Auto {
                 ),
             );
             stage(
+                &mut stats,
                 "order",
                 "done: the coverage map of every opaque piece (translucent scene)".into(),
             );
             stage(
+                &mut stats,
                 "split",
                 "done where needed by the coverage map (translucent scene)".into(),
             );
@@ -84,7 +86,7 @@ impl Strategy for Auto {
             v.stats.append(&mut stats);
             return v;
         }
-        stage("blend", "skipped: every face is opaque".into());
+        stage(&mut stats, "blend", "skipped: every face is opaque".into());
         let pieces = initial_pieces(screen);
         let whole = whole_meshes(screen);
         let (mut visible, overlapping): (Vec<Piece>, Vec<Piece>) = pieces
@@ -95,14 +97,15 @@ impl Strategy for Auto {
         let depth = depth_complexity(&overlapping);
         stats.insert("depth_complexity_estimate".into(), depth.into());
         let whole_meshes = whole.placed.iter().filter(|&&w| w).count();
-        for (k, v) in [
-            ("meshes_on_screen", whole.on_screen),
-            ("meshes_apart", whole.apart),
-            ("meshes_placed_whole", whole_meshes),
-            ("pieces_placed_whole", placed),
-        ] {
-            stats.insert(k.into(), v.into());
-        }
+        put_counts(
+            &mut stats,
+            [
+                ("meshes_on_screen", whole.on_screen),
+                ("meshes_apart", whole.apart),
+                ("meshes_placed_whole", whole_meshes),
+                ("pieces_placed_whole", placed),
+            ],
+        );
         let skipped = match whole_meshes {
             0 => String::new(),
             m => format!(
@@ -119,10 +122,8 @@ impl Strategy for Auto {
             // it wherever one surrounding face hides it.
             let (pieces, ws) = warnock_exact::visible_pieces(screen, &overlapping, report);
             visible.extend(pieces);
-            let mut stage = |k: &str, v: String| {
-                stats.insert(format!("stage_{k}"), v.into());
-            };
             stage(
+                &mut stats,
                 "order",
                 format!(
                     "{skipped}done by Warnock's subdivision at object precision for {}: \
@@ -135,28 +136,28 @@ impl Strategy for Auto {
                 ),
             );
             stage(
+                &mut stats,
                 "split",
                 format!(
                     "done only in {} (clipped exactly, Weiler-Atherton)",
                     count(ws.leaves, "small area", "small areas")
                 ),
             );
-            for (k, v) in [
-                ("areas", ws.areas),
-                ("areas_settled", ws.settled),
-                ("leaves_clipped", ws.leaves),
-            ] {
-                stats.insert(k.into(), v.into());
-            }
+            put_counts(
+                &mut stats,
+                [
+                    ("areas", ws.areas),
+                    ("areas_settled", ws.settled),
+                    ("leaves_clipped", ws.leaves),
+                ],
+            );
             return VisibleSet::exact(screen, visible, Vec::new(), stats, fallbacks);
         }
         let coverage = coverage_of(screen, overlapping, report);
         let cs = coverage.stats.clone();
         visible.extend(coverage.into_pieces());
-        let mut stage = |k: &str, v: String| {
-            stats.insert(format!("stage_{k}"), v.into());
-        };
         stage(
+            &mut stats,
             "order",
             if n == 0 {
                 format!("{skipped}nothing left to order")
@@ -177,6 +178,7 @@ impl Strategy for Auto {
             },
         );
         stage(
+            &mut stats,
             "split",
             if cs.plane_splits == 0 {
                 "skipped: no overlapping pair reaches in front of the other's plane where they \
@@ -189,14 +191,15 @@ impl Strategy for Auto {
                 )
             },
         );
-        for (k, v) in [
-            ("pieces", cs.inserted),
-            ("overlap_tests", cs.overlap_tests),
-            ("replaced", cs.replaced),
-            ("plane_splits", cs.plane_splits),
-        ] {
-            stats.insert(k.into(), v.into());
-        }
+        put_counts(
+            &mut stats,
+            [
+                ("pieces", cs.inserted),
+                ("overlap_tests", cs.overlap_tests),
+                ("replaced", cs.replaced),
+                ("plane_splits", cs.plane_splits),
+            ],
+        );
         VisibleSet::exact(screen, visible, Vec::new(), stats, fallbacks)
     }
 }
@@ -238,6 +241,12 @@ pub fn depth_complexity(pieces: &[Piece]) -> f64 {
     pieces.len() as f64 * *median / area
 }
 
+/// Records what a stage did, or why it was skipped (`stage_{name}`; `--stats` prints these as
+/// lines, see `render::Computed::detail`).
+fn stage(stats: &mut Stats, name: &str, what: String) {
+    stats.insert(format!("stage_{name}"), what.into());
+}
+
 /// `n` and the noun in its number: "1 piece", "2 pieces".
 fn count(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
@@ -273,22 +282,15 @@ fn whole_meshes(screen: &ScreenScene) -> WholeMeshes {
         }
         polys_of[p.mesh as usize].push(k as u32);
     }
-    // Sweep the boxes by left edge: a mesh is crowded when its box's interior meets another's.
-    let mut order: Vec<usize> = (0..meshes).filter(|&m| !polys_of[m].is_empty()).collect();
-    order.sort_by_key(|&m| (boxes[m][0], m));
+    // A mesh is crowded when its box's interior meets another's.
+    let order: Vec<usize> = (0..meshes).filter(|&m| !polys_of[m].is_empty()).collect();
+    let on_screen: Vec<[i64; 4]> = order.iter().map(|&m| boxes[m]).collect();
     let mut crowded = vec![false; meshes];
-    let mut active: Vec<usize> = Vec::new();
-    for &m in &order {
-        let b = boxes[m];
-        active.retain(|&a| boxes[a][2] > b[0]);
-        for &a in &active {
-            if boxes[a][1] < b[3] && b[1] < boxes[a][3] {
-                crowded[a] = true;
-                crowded[m] = true;
-            }
-        }
-        active.push(m);
-    }
+    sweep_overlapping(&on_screen, |a, b| {
+        crowded[order[a]] = true;
+        crowded[order[b]] = true;
+        true
+    });
     let placed: Vec<bool> = (0..meshes)
         .map(|m| {
             !polys_of[m].is_empty() && !crowded[m] && tiles_convex_region_once(screen, &polys_of[m])

@@ -98,16 +98,10 @@ impl<'a> Coverage<'a> {
                 out.push(part);
                 return;
             }
-            // The viewer is on the negative side of `front`'s support plane.
-            match part.split_by_plane(&front.support, front.poly) {
-                Split::Negative => out.push(part),
-                Split::Positive => subtract(part, front, out),
-                Split::On if tie_key(screen, &part) < tie_key(screen, front) => out.push(part),
-                Split::On => subtract(part, front, out),
-                Split::Both(nearer, farther) => {
-                    out.push(nearer);
-                    subtract(farther, front, out);
-                }
+            let (nearer, farther) = split_by_depth(screen, part, front);
+            out.extend(nearer);
+            if let Some(farther) = farther {
+                subtract(farther, front, out);
             }
         }));
     }
@@ -273,6 +267,42 @@ fn resolve(
             Some(front_keeps)
         }
     }
+}
+
+/// `piece` split by `front`'s support plane: (the part in front of it, the part behind it),
+/// either possibly absent. The viewer is on the negative side of every support plane; a piece in
+/// `front`'s plane is in front when it wins the tie rule ([`tie_key`]).
+pub(crate) fn split_by_depth(
+    screen: &ScreenScene,
+    piece: Piece,
+    front: &Piece,
+) -> (Option<Piece>, Option<Piece>) {
+    match piece.split_by_plane(&front.support, front.poly) {
+        Split::Negative => (Some(piece), None),
+        Split::Positive => (None, Some(piece)),
+        Split::On if tie_key(screen, &piece) < tie_key(screen, front) => (Some(piece), None),
+        Split::On => (None, Some(piece)),
+        Split::Both(nearer, farther) => (Some(nearer), Some(farther)),
+    }
+}
+
+/// The parts of `piece` outside every one of `covers` (convex pieces), exactly.
+pub(crate) fn subtract_all<'c>(
+    piece: Piece,
+    covers: impl IntoIterator<Item = &'c Piece>,
+) -> Vec<Piece> {
+    let mut parts = vec![piece];
+    for c in covers {
+        let mut next = Vec::with_capacity(parts.len());
+        for p in parts {
+            subtract(p, c, &mut next);
+        }
+        parts = next;
+        if parts.is_empty() {
+            break;
+        }
+    }
+    parts
 }
 
 /// Pushes the parts of `piece` outside the convex `front` (exactly; touching is outside).

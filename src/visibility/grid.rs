@@ -92,6 +92,24 @@ impl BoxGrid {
     }
 }
 
+/// Calls `pair(a, b)` for pairs of integer boxes (x0, y0, x1, y1) whose interiors overlap, found
+/// by a sweep over the left edges, until it returns `false`. Exact: grid integers.
+pub(crate) fn sweep_overlapping(boxes: &[[i64; 4]], mut pair: impl FnMut(usize, usize) -> bool) {
+    let mut order: Vec<usize> = (0..boxes.len()).collect();
+    order.sort_by_key(|&i| (boxes[i][0], i));
+    let mut active: Vec<usize> = Vec::new();
+    for &i in &order {
+        let b = boxes[i];
+        active.retain(|&a| boxes[a][2] > b[0]);
+        for &a in &active {
+            if boxes[a][1] < b[3] && b[1] < boxes[a][3] && !pair(a, i) {
+                return;
+            }
+        }
+        active.push(i);
+    }
+}
+
 /// For every box `a` that `wanted(a)` selects, in order, calls `f(a, near)` with the other boxes
 /// whose closed extents meet box `a`'s, ascending: the candidate neighbours of `a` (a filter:
 /// the caller decides exactly).

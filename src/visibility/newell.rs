@@ -30,9 +30,9 @@
 //! show, and the conformance tests compare the two. Translucent pieces are layered in the order
 //! of the list, less what later opaque pieces cover.
 
-use super::coverage::{subtract, tie_key};
+use super::coverage::{subtract, subtract_all, tie_key};
 use super::live::{Live, bounds, overlap};
-use super::visible_set::{Fragment, Stats, VisibleSet};
+use super::visible_set::{Fragment, Stats, VisibleSet, put_counts};
 use super::{Strategy, initial_pieces};
 use crate::exact::polygon::{Piece, Split, separated};
 use crate::exact::predicates::fallback_count;
@@ -74,20 +74,21 @@ impl Strategy for Newell {
         let (order, st) = depth_order(screen, initial_pieces(screen), report);
         let (pieces, layered) = overpaint(&order, translucent);
         let mut stats = Stats::new();
-        for (k, v) in [
-            ("pieces", st.pieces),
-            ("compared", st.compared),
-            ("settled_by_screen_box", st.settled_by[0]),
-            ("settled_by_behind_plane", st.settled_by[1]),
-            ("settled_by_in_front_of_plane", st.settled_by[2]),
-            ("settled_by_disjoint_projection", st.settled_by[3]),
-            ("moves", st.moves),
-            ("interpenetration_cuts", st.interpenetration_cuts),
-            ("cycle_cuts", st.cycle_cuts),
-            ("painter_list", st.list),
-        ] {
-            stats.insert(k.into(), v.into());
-        }
+        put_counts(
+            &mut stats,
+            [
+                ("pieces", st.pieces),
+                ("compared", st.compared),
+                ("settled_by_screen_box", st.settled_by[0]),
+                ("settled_by_behind_plane", st.settled_by[1]),
+                ("settled_by_in_front_of_plane", st.settled_by[2]),
+                ("settled_by_disjoint_projection", st.settled_by[3]),
+                ("moves", st.moves),
+                ("interpenetration_cuts", st.interpenetration_cuts),
+                ("cycle_cuts", st.cycle_cuts),
+                ("painter_list", st.list),
+            ],
+        );
         stats.insert(
             "translucent_painter_order".into(),
             (!layered.is_empty()).into(),
@@ -392,18 +393,9 @@ pub fn overpaint(
     let mut layered = Vec::new();
     for piece in order.iter().rev() {
         if translucent(piece.poly) {
-            let mut parts = vec![piece.clone()];
-            for v in opaque_after.near(&bounds(piece)) {
-                let cover = opaque_after.get(v).expect("kept");
-                parts = parts
-                    .into_iter()
-                    .flat_map(|p| {
-                        let mut out = Vec::new();
-                        subtract(p, cover, &mut out);
-                        out
-                    })
-                    .collect();
-            }
+            let near = opaque_after.near(&bounds(piece));
+            let covers = near.iter().map(|&v| opaque_after.get(v).expect("kept"));
+            let parts = subtract_all(piece.clone(), covers);
             layered.extend(
                 parts
                     .into_iter()

@@ -31,7 +31,7 @@
 //!
 //! [`Boundary`]: crate::exact::polygon::Boundary
 
-use super::coverage::subtract;
+use super::coverage::subtract_all;
 use super::live::{Live, bounds};
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::{Line, line_side};
@@ -42,6 +42,16 @@ use std::cmp::Ordering;
 /// A strategy's counters (pieces, splits, fallbacks, ...), keys sorted; written into the JSON
 /// output as they are, so they hold no timings.
 pub type Stats = serde_json::Map<String, serde_json::Value>;
+
+/// Adds counters to a strategy's stats.
+pub(crate) fn put_counts<'k>(
+    stats: &mut Stats,
+    counts: impl IntoIterator<Item = (&'k str, usize)>,
+) {
+    for (k, v) in counts {
+        stats.insert(k.into(), v.into());
+    }
+}
 
 /// Something drawn over the visible pieces.
 #[derive(Clone, Debug, PartialEq)]
@@ -213,19 +223,12 @@ fn uncovered(pieces: &[Piece], cover: &[Piece]) -> Vec<Piece> {
     }
     let mut out = Vec::new();
     for piece in pieces {
-        let mut parts = vec![piece.clone()];
-        for v in index.near(&bounds(piece)) {
-            let c = index.get(v).expect("never removed");
-            if c.poly != piece.poly {
-                continue;
-            }
-            let mut next = Vec::new();
-            for p in parts {
-                subtract(p, c, &mut next);
-            }
-            parts = next;
-        }
-        out.extend(parts);
+        let near = index.near(&bounds(piece));
+        let same_polygon = near
+            .iter()
+            .map(|&v| index.get(v).expect("never removed"))
+            .filter(|c| c.poly == piece.poly);
+        out.extend(subtract_all(piece.clone(), same_polygon));
     }
     out
 }

@@ -21,7 +21,7 @@
 //! layered over the result as the coverage map layers them.
 
 use super::coverage::tie_key;
-use super::visible_set::{Stats, VisibleSet};
+use super::visible_set::{Stats, VisibleSet, put_counts};
 use super::weiler_atherton;
 use super::{Strategy, opaque_then_layered};
 use crate::exact::polygon::{Boundary, Piece, Split};
@@ -67,15 +67,16 @@ impl Strategy for WarnockExact {
         opaque_then_layered(screen, translucent, report, |opaque| {
             let (visible, st) = visible_pieces(screen, &opaque, report);
             let mut stats = Stats::new();
-            for (k, v) in [
-                ("areas", st.areas),
-                ("areas_settled", st.settled),
-                ("leaves_clipped", st.leaves),
-                ("hidden_in_areas", st.hidden),
-                ("deepest_area", st.deepest),
-            ] {
-                stats.insert(k.into(), v.into());
-            }
+            put_counts(
+                &mut stats,
+                [
+                    ("areas", st.areas),
+                    ("areas_settled", st.settled),
+                    ("leaves_clipped", st.leaves),
+                    ("hidden_in_areas", st.hidden),
+                    ("deepest_area", st.deepest),
+                ],
+            );
             (visible, stats)
         })
     }
@@ -235,11 +236,7 @@ impl Run<'_> {
             .filter(|(_, c)| *c == Class::Surrounding)
             .map(|&(p, _)| p)
             .collect();
-        surrounding.sort_by_cached_key(|p| {
-            let poly = &self.screen.polys[p.poly as usize];
-            let nearest = self.screen.corners(poly).iter().map(|c| c.z).min();
-            (nearest, tie_key(self.screen, p))
-        });
+        surrounding.sort_by_cached_key(|p| weiler_atherton::clip_order(self.screen, p.poly));
         for front in surrounding {
             if !list.iter().any(|(p, _)| std::ptr::eq(*p, front)) {
                 continue;

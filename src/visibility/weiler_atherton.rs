@@ -24,11 +24,11 @@
 //! of one no polygon is nearer. Translucent faces are layered over the result as the coverage map
 //! layers them ([`super::bsp::translucent_layer`]).
 
-use super::coverage::{clip, tie_key};
+use super::coverage::{clip, split_by_depth};
 use super::live::{Live, bounds};
-use super::visible_set::{Stats, VisibleSet};
+use super::visible_set::{Stats, VisibleSet, put_counts};
 use super::{Strategy, opaque_then_layered};
-use crate::exact::polygon::{Piece, Split, separated};
+use crate::exact::polygon::{Piece, separated};
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use std::collections::HashMap;
@@ -62,15 +62,16 @@ impl Strategy for WeilerAtherton {
         opaque_then_layered(screen, translucent, report, |opaque| {
             let (visible, st) = visible_pieces(screen, opaque, report);
             let mut stats = Stats::new();
-            for (k, v) in [
-                ("clip_polygons", st.clip_polygons),
-                ("clipped", st.clipped),
-                ("hidden_parts", st.hidden),
-                ("recursions", st.recursions),
-                ("deepest_recursion", st.deepest),
-            ] {
-                stats.insert(k.into(), v.into());
-            }
+            put_counts(
+                &mut stats,
+                [
+                    ("clip_polygons", st.clip_polygons),
+                    ("clipped", st.clipped),
+                    ("hidden_parts", st.hidden),
+                    ("recursions", st.recursions),
+                    ("deepest_recursion", st.deepest),
+                ],
+            );
             (visible, stats)
         })
     }
@@ -94,8 +95,8 @@ pub fn visible_pieces(
 }
 
 /// Weiler and Atherton's order of clip polygons: nearest corner first, then the z-buffer's tie
-/// rule (front first), then the polygon.
-fn clip_order(screen: &ScreenScene, poly: u32) -> impl Ord {
+/// rule (front first). Warnock's subdivision tries surrounding pieces in this order too.
+pub(crate) fn clip_order(screen: &ScreenScene, poly: u32) -> impl Ord {
     let p = &screen.polys[poly as usize];
     let nearest = screen.corners(p).iter().map(|c| c.z).min().unwrap_or(0);
     (nearest, std::cmp::Reverse(p.id), std::cmp::Reverse(poly))
@@ -148,17 +149,9 @@ fn resolve(
                     of_poly.get_mut(&poly).expect("not yet a clip").push(v);
                 }
                 let Some(q) = inside else { continue };
-                // The viewer is on the negative side of every support plane.
-                match q.split_by_plane(&c_piece.support, c_piece.poly) {
-                    Split::Positive => st.hidden += 1,
-                    Split::Negative => in_front.push(q),
-                    Split::On if tie_key(screen, &q) < tie_key(screen, c_piece) => in_front.push(q),
-                    Split::On => st.hidden += 1,
-                    Split::Both(nearer, _) => {
-                        st.hidden += 1;
-                        in_front.push(nearer);
-                    }
-                }
+                let (nearer, farther) = split_by_depth(screen, q, c_piece);
+                st.hidden += farther.is_some() as usize;
+                in_front.extend(nearer);
             }
         }
         if in_front.is_empty() {
