@@ -324,6 +324,14 @@ struct BenchArgs {
     /// ../shared/meshes for meshes).
     #[arg(long, value_name = "DIR", requires = "suite")]
     dir: Option<PathBuf>,
+    /// With --suite: a measurement (one method on one scene at one size, in a child process)
+    /// taking longer is stopped and recorded as failed.
+    #[arg(long, value_name = "SECONDS", default_value_t = 600.0, requires = "suite", value_parser = parse_positive_seconds, allow_negative_numbers = true)]
+    time_limit: f64,
+    /// With --suite: a measurement whose resident memory grows past this is stopped and
+    /// recorded as failed.
+    #[arg(long, value_name = "MB", default_value_t = 8192, requires = "suite", value_parser = parse_count, allow_negative_numbers = true)]
+    memory_limit: usize,
     /// Read the input as this format, whatever its extension.
     #[arg(long, value_enum)]
     format: Option<Format>,
@@ -511,6 +519,14 @@ fn parse_count(s: &str) -> Result<usize, String> {
         .ok()
         .filter(|&n| n >= 1)
         .ok_or_else(|| format!("'{s}' is not a whole number >= 1"))
+}
+
+fn parse_positive_seconds(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|&t| t > 0.0 && t <= 1e6)
+        .ok_or_else(|| format!("'{s}' is not a number of seconds above 0 (at most 1000000)"))
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -1239,7 +1255,8 @@ fn suite_dir(suite: sightline::benchmark::Suite, dir: Option<&Path>) -> PathBuf 
 }
 
 /// The hidden `bench-one`: loads one scene of a suite, times one method at one size (median of
-/// a few runs) and prints `{"time_s": .., "peak_rss_kb": ..}`, the peak read at its end.
+/// a few runs) and prints `{"time_s": .., "peak_rss_kb": .., "pieces": .., "chosen": ..}`, the
+/// peak read at its end.
 fn bench_one(a: BenchOneArgs) -> sightline::Result<()> {
     use sightline::benchmark;
     let dir = suite_dir(a.suite, a.dir.as_deref());
@@ -1250,35 +1267,36 @@ fn bench_one(a: BenchOneArgs) -> sightline::Result<()> {
         .ok_or_else(|| sightline::Error::Options(format!("no scene '{}' in the suite", a.scene)))?;
     let loaded = scene.load()?;
     let camera = loaded.camera(a.size)?;
-    let time_s = benchmark::time_median(a.method, &loaded.scene, &camera);
+    let timing = benchmark::time_median(a.method, &loaded.scene, &camera);
     let line = serde_json::json!({
-        "time_s": time_s,
+        "time_s": timing.time_s,
         "peak_rss_kb": benchmark::peak_rss_kb(),
+        "pieces": timing.pieces,
+        "chosen": timing.chosen,
     });
     println!("{line}");
     Ok(())
 }
 
-/// Runs `bench-one` in a child process: (median seconds, peak resident kB).
+/// Runs `bench-one` in a child process under `limits`.
 fn measure_in_child(
     suite: sightline::benchmark::Suite,
     dir: &Path,
     scene: &str,
     method: &Method,
     size: u32,
-) -> sightline::Result<(f64, Option<u64>)> {
+    limits: sightline::benchmark::child::Limits,
+) -> Result<sightline::benchmark::child::Measured, sightline::benchmark::child::Failure> {
     use clap::ValueEnum as _;
-    let fail = |why: String| {
-        sightline::Error::Output(format!(
-            "measuring {} on {scene} at {size}x{size}: {why}",
-            method.name
-        ))
-    };
-    let exe = std::env::current_exe().map_err(|e| fail(format!("no executable path: {e}")))?;
+    use sightline::benchmark::child::{self, Failure};
+    let exe = std::env::current_exe().map_err(|e| Failure::Failed {
+        message: format!("no executable path: {e}"),
+    })?;
     let suite_name = suite
         .to_possible_value()
         .map_or_else(String::new, |v| v.get_name().to_string());
-    let out = std::process::Command::new(exe)
+    let mut command = std::process::Command::new(exe);
+    command
         .arg("bench-one")
         .args([
             "--suite",
@@ -1290,23 +1308,8 @@ fn measure_in_child(
         ])
         .args(["--size", &size.to_string()])
         .arg("--dir")
-        .arg(dir)
-        .stdin(std::process::Stdio::null())
-        .output()
-        .map_err(|e| fail(format!("could not start the child process: {e}")))?;
-    if !out.status.success() {
-        return Err(fail(format!(
-            "the child process failed ({}): {}",
-            out.status,
-            String::from_utf8_lossy(&out.stderr).trim()
-        )));
-    }
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout)
-        .map_err(|e| fail(format!("unreadable child output: {e}")))?;
-    let time = v["time_s"]
-        .as_f64()
-        .ok_or_else(|| fail("no time in the child output".into()))?;
-    Ok((time, v["peak_rss_kb"].as_u64()))
+        .arg(dir);
+    child::measure(command, limits)
 }
 
 /// A scene name as a file name part: letters, digits, '-' and '_' kept, the rest '_'.
@@ -1325,7 +1328,11 @@ fn file_part(name: &str) -> String {
 /// `bench --suite`: every method on every scene at every size; results.csv, results.json and
 /// one plot per scene in --out.
 fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::Result<()> {
-    use sightline::benchmark::{self, Row, plot, truth};
+    use sightline::benchmark::{self, FailedRow, Row, child, plot, truth};
+    let limits = child::Limits {
+        time: std::time::Duration::from_secs_f64(a.time_limit),
+        memory_kb: a.memory_limit as u64 * 1024,
+    };
     let out_dir = a.out.clone().expect("clap requires --out with --suite");
     let (methods, sizes) = (a.methods.0, a.sizes.0);
     let dir = suite_dir(suite, a.dir.as_deref());
@@ -1350,7 +1357,7 @@ fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::R
         "{pos}/{len}",
     );
     let mut rows: Vec<Row> = Vec::new();
-    let mut failures = 0usize;
+    let mut failed: Vec<FailedRow> = Vec::new();
     for bs in &scenes {
         let loaded = match bs.load() {
             Ok(l) => l,
@@ -1361,7 +1368,7 @@ fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::R
             }
         };
         // Object-space methods' time and memory do not depend on the size: measured once.
-        let mut once: Vec<(&str, f64, Option<u64>)> = Vec::new();
+        let mut once: Vec<(&str, child::Measured)> = Vec::new();
         let mut failed_once: Vec<&str> = Vec::new();
         for (k, &size) in sizes.iter().enumerate() {
             bar.set_message(format!("{} {size}", bs.name));
@@ -1379,19 +1386,29 @@ fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::R
                     bar.inc(1);
                     continue;
                 }
-                let (time_s, peak_rss_kb) = match once.iter().find(|o| o.0 == m.name) {
-                    Some(&(_, t, r)) => (t, r),
-                    None => match measure_in_child(suite, &dir, &bs.name, m, size) {
-                        Ok((t, r)) => {
+                let measured = match once.iter().find(|o| o.0 == m.name) {
+                    Some((_, measured)) => measured.clone(),
+                    None => match measure_in_child(suite, &dir, &bs.name, m, size, limits) {
+                        Ok(measured) => {
                             if object {
-                                once.push((m.name, t, r));
+                                once.push((m.name, measured.clone()));
                             }
-                            (t, r)
+                            measured
                         }
-                        // A child killed for memory, say: the other measurements go on.
-                        Err(e) => {
-                            bar.suspend(|| eprintln!("warning: {e}"));
-                            failures += 1;
+                        // A child stopped at a limit, say: the other measurements go on.
+                        Err(failure) => {
+                            bar.suspend(|| {
+                                eprintln!(
+                                    "warning: {} on {} at {size}x{size}: {failure}",
+                                    m.name, bs.name
+                                )
+                            });
+                            failed.push(FailedRow {
+                                scene: bs.name.clone(),
+                                method: m.name,
+                                size,
+                                failure,
+                            });
                             if object {
                                 failed_once.push(m.name);
                             }
@@ -1412,10 +1429,12 @@ fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::R
                     engine: if object { "object" } else { "image" },
                     exact: m.exact,
                     size,
-                    time_s,
-                    peak_rss_kb,
+                    time_s: measured.time_s,
+                    peak_rss_kb: measured.peak_rss_kb,
                     error,
                     reused: object && k > 0,
+                    pieces: measured.pieces,
+                    chosen: measured.chosen,
                 });
                 bar.inc(1);
             }
@@ -1426,7 +1445,7 @@ fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::R
         w.write_all(benchmark::csv(&rows).as_bytes())
     })?;
     write_with(&out_dir.join("results.json"), |w| {
-        w.write_all(benchmark::json(suite, &sizes, &rows).as_bytes())
+        w.write_all(benchmark::json(suite, &sizes, &rows, &failed).as_bytes())
     })?;
     let crossovers = benchmark::crossovers(&rows);
     let mut plotted = Vec::new();
@@ -1463,7 +1482,16 @@ fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::R
                 .filter(|r| r.method == m.name)
                 .map(|r| format!("{} {:.2e} s err {:.2e}", r.size, r.time_s, r.error))
                 .collect();
-            println!("  {:16} {}", m.name, runs.join(", "));
+            let chosen = scene_rows
+                .iter()
+                .find(|r| r.method == m.name)
+                .and_then(|r| r.chosen.as_deref())
+                .map_or_else(String::new, |c| format!(" (ran {c})"));
+            let stopped = failed
+                .iter()
+                .find(|f| f.scene == bs.name && f.method == m.name)
+                .map_or_else(String::new, |f| format!(" {}", f.failure));
+            println!("  {:16} {}{chosen}{stopped}", m.name, runs.join(", "));
         }
         for c in crossovers.iter().filter(|c| c.scene == bs.name) {
             match c.from_size {
@@ -1487,9 +1515,11 @@ fn bench_suite(suite: sightline::benchmark::Suite, a: BenchArgs) -> sightline::R
         out_dir.join("results.json").display(),
         plotted.len()
     );
-    if failures > 0 {
+    if !failed.is_empty() {
         return Err(sightline::Error::Output(format!(
-            "{failures} measurement(s) failed (see the warnings above); the results hold the others"
+            "{} measurement(s) failed (see the warnings above and `failed` in results.json); \
+             the results hold the others",
+            failed.len()
         )));
     }
     Ok(())

@@ -43,11 +43,11 @@ fn the_fixtures_suite_writes_every_row_with_the_exact_method_at_zero_and_the_pai
     let mut lines = csv.lines();
     assert_eq!(
         lines.next(),
-        Some("scene,method,engine,exact,size,time_s,peak_rss_kb,error,reused")
+        Some("scene,method,engine,exact,size,time_s,peak_rss_kb,error,reused,pieces,chosen")
     );
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), fixture_count() * 3 * 2);
-    assert!(rows.iter().all(|r| r.len() == 9));
+    assert!(rows.iter().all(|r| r.len() == 11));
     let error = |r: &[&str]| r[7].parse::<f64>().unwrap();
     for r in &rows {
         let t: f64 = r[5].parse().unwrap();
@@ -95,6 +95,9 @@ fn bad_sizes_unknown_methods_and_unwritable_folders_are_errors() {
         (vec!["--sizes", "0"], "not an image side"),
         (vec!["--sizes", "abc"], "'abc'"),
         (vec!["--methods", "zbuffer,nope"], "unknown method 'nope'"),
+        (vec!["--time-limit", "0"], "seconds above 0"),
+        (vec!["--time-limit", "-5"], "seconds above 0"),
+        (vec!["--memory-limit", "0"], "'0'"),
     ] {
         let mut a = vec!["bench", "--suite", "fixtures", "--out", out];
         a.extend(args);
@@ -155,4 +158,44 @@ fn bad_sizes_unknown_methods_and_unwritable_folders_are_errors() {
         "32x32",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
+fn a_measurement_over_its_memory_limit_is_recorded_as_failed_and_the_others_kept() {
+    // Every process peaks above 1 MB, so each child measurement is over the limit: judged from
+    // the peak it reports even when it ends between two polls.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bench");
+    let o = sightline(&[
+        "bench",
+        "--suite",
+        "generated",
+        "--methods",
+        "coverage",
+        "--sizes",
+        "16",
+        "--memory-limit",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(
+        err.contains("coverage on soup-100 at 16x16: stopped at the memory limit of 1 MB"),
+        "{err}"
+    );
+    assert!(err.contains("measurement(s) failed"), "{err}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    let failed = json["failed"].as_array().unwrap();
+    assert_eq!(failed.len(), 5, "one method on five scenes");
+    assert!(
+        failed
+            .iter()
+            .all(|f| f["failure"]["kind"] == "memory_limit" && f["failure"]["kb"] == 1024),
+        "{failed:?}"
+    );
+    assert_eq!(json["rows"].as_array().unwrap().len(), 0);
 }

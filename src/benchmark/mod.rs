@@ -40,6 +40,7 @@
 //! of a child process doing one measurement (load, projection, the method), read from
 //! `/proc/self/status` (`VmHWM`) on Linux; `None` elsewhere.
 
+pub mod child;
 pub mod plot;
 pub mod truth;
 
@@ -310,27 +311,59 @@ pub fn time_once(method: &Method, scene: &Scene, screen: &ScreenScene, camera: &
     timed_compute(method, scene, screen, camera).0
 }
 
+/// What one `bench-one` measurement reports besides the peak memory.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Timing {
+    /// The median seconds.
+    pub time_s: f64,
+    /// Visible pieces of an object-space method (its `visible_pieces` statistic).
+    pub pieces: Option<u64>,
+    /// What `auto` ran (its `chosen` statistic).
+    pub chosen: Option<String>,
+}
+
 /// The median time of `method` on `scene` at `camera`: up to 5 runs, fewer when a run takes
-/// over a second (at least 1), after one projection.
-pub fn time_median(method: &Method, scene: &Scene, camera: &Camera) -> f64 {
+/// over a second (at least 1), after one projection; with the last run's piece count and
+/// choice.
+pub fn time_median(method: &Method, scene: &Scene, camera: &Camera) -> Timing {
     let prepared = pipeline::prepare(scene, camera, CullMode::Auto);
     let mut times = Vec::new();
     let mut total = 0.0;
+    let (mut pieces, mut chosen) = (None, None);
     while times.len() < 5 && (times.is_empty() || total < 2.0) {
-        let t = time_once(method, scene, &prepared.screen, camera);
+        let (t, computed) = timed_compute(method, scene, &prepared.screen, camera);
+        if let crate::render::Computed::Visible(v) = &computed {
+            pieces = v.stats.get("visible_pieces").and_then(|p| p.as_u64());
+            chosen = v
+                .stats
+                .get("chosen")
+                .and_then(|c| c.as_str())
+                .map(str::to_string);
+        }
         total += t;
         times.push(t);
     }
     times.sort_by(f64::total_cmp);
-    times[times.len() / 2]
+    Timing {
+        time_s: times[times.len() / 2],
+        pieces,
+        chosen,
+    }
 }
 
 /// This process's peak resident set in kB (`VmHWM` of `/proc/self/status`), on Linux.
 pub fn peak_rss_kb() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    status_kb(
+        &std::fs::read_to_string("/proc/self/status").ok()?,
+        "VmHWM:",
+    )
+}
+
+/// The kB value of the line starting with `key` in a `/proc/PID/status` text.
+fn status_kb(status: &str, key: &str) -> Option<u64> {
     status
         .lines()
-        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .find_map(|l| l.strip_prefix(key))
         .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
 }
 
@@ -356,10 +389,15 @@ pub struct Row {
     pub error: f64,
     /// Time and memory measured at another size and reused (object-space methods).
     pub reused: bool,
+    /// Visible pieces (object-space methods: their `visible_pieces` statistic).
+    pub pieces: Option<u64>,
+    /// What `auto` ran (its `chosen` statistic); `None` for the other methods.
+    pub chosen: Option<String>,
 }
 
 /// The CSV header of [`Row`]s.
-pub const CSV_HEADER: &str = "scene,method,engine,exact,size,time_s,peak_rss_kb,error,reused";
+pub const CSV_HEADER: &str =
+    "scene,method,engine,exact,size,time_s,peak_rss_kb,error,reused,pieces,chosen";
 
 /// `rows` as CSV (header, one line per row; scene names quoted when they need it).
 pub fn csv(rows: &[Row]) -> String {
@@ -374,7 +412,7 @@ pub fn csv(rows: &[Row]) -> String {
     out.push('\n');
     for r in rows {
         out.push_str(&format!(
-            "{},{},{},{},{},{:.6e},{},{:.6e},{}\n",
+            "{},{},{},{},{},{:.6e},{},{:.6e},{},{},{}\n",
             quote(&r.scene),
             r.method,
             r.engine,
@@ -383,7 +421,9 @@ pub fn csv(rows: &[Row]) -> String {
             r.time_s,
             r.peak_rss_kb.map_or(String::new(), |k| k.to_string()),
             r.error,
-            r.reused
+            r.reused,
+            r.pieces.map_or(String::new(), |k| k.to_string()),
+            quote(r.chosen.as_deref().unwrap_or(""))
         ));
     }
     out
@@ -455,8 +495,22 @@ pub fn crossovers(rows: &[Row]) -> Vec<Crossover> {
     out
 }
 
-/// The JSON document of a run: suite, sizes, rows, crossovers.
-pub fn json(suite: Suite, sizes: &[u32], rows: &[Row]) -> String {
+/// A measurement with no result: which, and why (a limit or an error).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FailedRow {
+    /// The scene's name.
+    pub scene: String,
+    /// The method's registry name.
+    pub method: &'static str,
+    /// Image side.
+    pub size: u32,
+    /// Why.
+    pub failure: child::Failure,
+}
+
+/// The JSON document of a run: suite, sizes, rows, crossovers, and the measurements that
+/// failed.
+pub fn json(suite: Suite, sizes: &[u32], rows: &[Row], failed: &[FailedRow]) -> String {
     #[derive(Serialize)]
     struct Doc<'a> {
         suite: Suite,
@@ -464,6 +518,7 @@ pub fn json(suite: Suite, sizes: &[u32], rows: &[Row]) -> String {
         error_definition: &'static str,
         rows: &'a [Row],
         crossovers: Vec<Crossover>,
+        failed: &'a [FailedRow],
     }
     let doc = Doc {
         suite,
@@ -471,6 +526,7 @@ pub fn json(suite: Suite, sizes: &[u32], rows: &[Row]) -> String {
         error_definition: "fraction of the image area given to the wrong face: mean over pixels of 1 - the area fraction of the face shown at the pixel centre; 0 by definition for exact object-space methods",
         rows,
         crossovers: crossovers(rows),
+        failed,
     };
     let mut s = serde_json::to_string_pretty(&doc).unwrap_or_else(|_| "{}".into());
     s.push('\n');
@@ -499,6 +555,8 @@ mod tests {
             peak_rss_kb: None,
             error: 0.0,
             reused: false,
+            pieces: None,
+            chosen: None,
         }
     }
 
