@@ -85,6 +85,75 @@ impl CentreTruth {
     }
 }
 
+/// [`CentreTruth`] at every pixel centre of an image (row-major, row 0 at the top), 8 bytes a
+/// pixel: centres on a boundary, which are rare, keep their faces in a side table.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct CentreTruths {
+    cells: Vec<Cell>,
+    ties: Vec<(Vec<u32>, bool)>,
+}
+
+/// One centre: background, one face, or a tie (index into `CentreTruths::ties`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Cell {
+    Background,
+    Face(u32),
+    Tie(u32),
+}
+
+impl CentreTruths {
+    /// The number of centres.
+    pub fn len(&self) -> usize {
+        self.cells.len()
+    }
+
+    /// No centres at all (an empty image).
+    pub fn is_empty(&self) -> bool {
+        self.cells.is_empty()
+    }
+
+    /// The truth at centre `k`.
+    pub fn get(&self, k: usize) -> CentreTruth {
+        match self.cells[k] {
+            Cell::Background => CentreTruth::Background,
+            Cell::Face(f) => CentreTruth::Face(f),
+            Cell::Tie(t) => {
+                let (faces, background_right) = &self.ties[t as usize];
+                CentreTruth::Tie {
+                    faces: faces.clone(),
+                    background_right: *background_right,
+                }
+            }
+        }
+    }
+
+    /// Is showing `shown` (`None`: background) at centre `k` right? ([`CentreTruth::accepts`])
+    pub fn accepts(&self, k: usize, shown: Option<u32>) -> bool {
+        match (self.cells[k], shown) {
+            (Cell::Background, None) => true,
+            (Cell::Face(f), Some(g)) => f == g,
+            (Cell::Tie(t), shown) => {
+                let (faces, background_right) = &self.ties[t as usize];
+                match shown {
+                    Some(g) => faces.binary_search(&g).is_ok(),
+                    None => *background_right,
+                }
+            }
+            _ => false,
+        }
+    }
+
+    /// Does some closed piece contain centre `k`?
+    pub fn covered(&self, k: usize) -> bool {
+        self.cells[k] != Cell::Background
+    }
+
+    /// Does centre `k` lie on a boundary of the truth?
+    pub fn is_tie(&self, k: usize) -> bool {
+        matches!(self.cells[k], Cell::Tie(_))
+    }
+}
+
 /// How one pixel of the graded image compares with the truth.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Verdict {
@@ -131,7 +200,7 @@ pub struct Graded {
     /// The counts.
     pub grade: Grade,
     /// The truth at each pixel centre.
-    pub truth: Vec<CentreTruth>,
+    pub truth: CentreTruths,
     /// Each pixel's verdict.
     pub verdicts: Vec<Verdict>,
 }
@@ -193,15 +262,16 @@ pub fn grade_against(
         ..Grade::default()
     };
     let mut verdicts = Vec::with_capacity(n);
-    for (t, &shown) in truth.iter().zip(ids) {
+    for (k, &shown) in ids.iter().enumerate().take(truth.len()) {
+        let covered = truth.covered(k);
         g.image_covered += shown.is_some() as usize;
-        g.exact_covered += t.covered() as usize;
-        g.ties += matches!(t, CentreTruth::Tie { .. }) as usize;
+        g.exact_covered += covered as usize;
+        g.ties += truth.is_tie(k) as usize;
         let v = match shown {
             Some(id) if !is_face(id) => Verdict::UnknownId,
-            _ if t.accepts(shown) => Verdict::Right,
+            _ if truth.accepts(k, shown) => Verdict::Right,
             None => Verdict::MissingFace,
-            Some(_) if t.covered() => Verdict::WrongFace,
+            Some(_) if covered => Verdict::WrongFace,
             Some(_) => Verdict::ExtraFace,
         };
         match v {
@@ -239,13 +309,14 @@ type Hold = (u32, Vec<[Wide; 2]>);
 /// What the exact visible set holds at every pixel centre of the screen (row-major, row 0 at
 /// the top), decided exactly: each centre is tested against every line of each piece whose
 /// bounds come near it.
-pub fn centre_truth(screen: &ScreenScene, visible: &VisibleSet) -> Vec<CentreTruth> {
+pub fn centre_truth(screen: &ScreenScene, visible: &VisibleSet) -> CentreTruths {
     let (w, h) = (screen.width as i64, screen.height as i64);
     let s = Samples::new(screen.width, screen.height);
-    // The first piece holding a centre off its boundary is the usual case and is stored
-    // directly; centres on some boundary keep every piece that holds them.
-    let mut inside: Vec<Option<u32>> = vec![None; (w * h) as usize];
-    let mut holds: rustc_hash::FxHashMap<usize, Vec<Hold>> = Default::default();
+    // A centre inside one piece, off its boundary, is the usual case and is stored directly;
+    // a centre on some boundary (or, which disjoint pieces never do, inside two) keeps every
+    // piece that holds it until the end.
+    let mut cells = vec![Cell::Background; (w * h) as usize];
+    let mut holds: Vec<Vec<Hold>> = Vec::new();
     for piece in &visible.pieces {
         let [x0, y0, x1, y1] = piece.bounds();
         let (c0, c1) = (s.col_of(x0), s.col_of(x1));
@@ -301,35 +372,39 @@ pub fn centre_truth(screen: &ScreenScene, visible: &VisibleSet) -> Vec<CentreTru
                 if outside {
                     continue;
                 }
-                let k = (j * w + i) as usize;
-                if on.is_empty() && inside[k].is_none() && !holds.contains_key(&k) {
-                    inside[k] = Some(face);
-                    continue;
-                }
-                // A centre held by more than one piece, or on a boundary: keep every hold.
-                let list = holds.entry(k).or_default();
-                if let Some(f) = inside[k].take() {
-                    list.push((f, Vec::new()));
-                }
+                let cell = &mut cells[(j * w + i) as usize];
+                let list = match *cell {
+                    Cell::Background if on.is_empty() => {
+                        *cell = Cell::Face(face);
+                        continue;
+                    }
+                    Cell::Background => {
+                        *cell = Cell::Tie(holds.len() as u32);
+                        holds.push(Vec::new());
+                        holds.last_mut().expect("just pushed")
+                    }
+                    Cell::Face(f) => {
+                        *cell = Cell::Tie(holds.len() as u32);
+                        holds.push(vec![(f, Vec::new())]);
+                        holds.last_mut().expect("just pushed")
+                    }
+                    Cell::Tie(t) => &mut holds[t as usize],
+                };
                 list.push((face, on));
             }
         }
     }
-    let mut truth: Vec<CentreTruth> = inside
+    let ties = holds
         .into_iter()
-        .map(|f| f.map_or(CentreTruth::Background, CentreTruth::Face))
+        .map(|list| {
+            let mut faces: Vec<u32> = list.iter().map(|(f, _)| *f).collect();
+            faces.sort_unstable();
+            faces.dedup();
+            let cones: Vec<Vec<[Wide; 2]>> = list.into_iter().map(|(_, c)| c).collect();
+            (faces, !cones_cover_every_direction(&cones))
+        })
         .collect();
-    for (k, list) in holds {
-        let mut faces: Vec<u32> = list.iter().map(|(f, _)| *f).collect();
-        faces.sort_unstable();
-        faces.dedup();
-        let cones: Vec<Vec<[Wide; 2]>> = list.into_iter().map(|(_, c)| c).collect();
-        truth[k] = CentreTruth::Tie {
-            faces,
-            background_right: !cones_cover_every_direction(&cones),
-        };
-    }
-    truth
+    CentreTruths { cells, ties }
 }
 
 /// Do closed convex cones with a common apex cover every direction of the plane? Each cone is
@@ -496,7 +571,7 @@ mod tests {
         let (_, screen) = split_square();
         let visible = CoverageMap.visible_set(&screen, &|_| false, None);
         let truth = centre_truth(&screen, &visible);
-        let at = |i: usize, j: usize| truth[j * 6 + i].clone();
+        let at = |i: usize, j: usize| truth.get(j * 6 + i);
         let tie = |faces: &[u32], background_right| CentreTruth::Tie {
             faces: faces.to_vec(),
             background_right,
@@ -544,8 +619,8 @@ mod tests {
         // Another tie rule: every tie shows its other face, or background where allowed.
         let other: Vec<Option<u32>> = ids
             .iter()
-            .zip(&graded.truth)
-            .map(|(id, truth)| match (truth, id) {
+            .enumerate()
+            .map(|(k, id)| match (graded.truth.get(k), id) {
                 (
                     CentreTruth::Tie {
                         background_right: true,
