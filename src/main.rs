@@ -926,7 +926,7 @@ fn compare_image(a: &CompareArgs, image_path: &Path) -> sightline::Result<()> {
     if g.unknown_id > 0 {
         let largest = scene.faces.iter().map(|f| f.id).max();
         eprintln!(
-            "warning: {}: {} pixels hold ids that are no face of the scene (face ids are 0..={}): was the image colour-managed (sRGB, gamma), dithered, blended or anti-aliased?",
+            "warning: {}: {} pixels hold ids that are no face of the scene (its largest face id is {}): was the image colour-managed (sRGB, gamma), dithered, blended or anti-aliased?",
             image_path.display(),
             g.unknown_id,
             largest.map_or_else(|| "none".into(), |m| m.to_string()),
