@@ -59,6 +59,7 @@ pub mod benchmark;
 pub mod camera;
 pub mod draw;
 pub mod exact;
+pub mod grade;
 pub mod lines;
 pub mod methods;
 pub mod output;

@@ -60,6 +60,31 @@ Examples:
   sightline render glass.x3d --method abuffer -o glass.png
   sightline info mesh.obj --view iso";
 
+const COMPARE_HELP: &str = "\
+Examples:
+  sightline compare fixtures/cube.obj --method coverage
+  sightline compare scene.obj --method painter --size 512x512
+  sightline compare scene.obj --method warnock --against scanline
+  sightline compare fixtures/cyclic_bars.obj --method painter --view front --diff diff.png
+  sightline compare fixtures/cube.obj --image theirs.png --view iso --diff where.png
+  sightline compare bunny.obj --image blender.png --cam bunny.cam
+
+With --image: the PNG holds at each pixel the id of the face seen at the pixel centre, plus
+one, as 24-bit RGB (r = (id+1)>>16 & 255, g = (id+1)>>8 & 255, b = (id+1) & 255), black (or
+alpha 0) for background, one sample at each pixel centre, no anti-aliasing, no colour
+management: what `render --fill id` writes (docs/compare_image.md: how to make one with OpenGL
+or Blender). 8-bit RGB, RGBA or palette; any alpha other than 0 or 255 is refused. The camera
+is given by the camera flags as for render; its size is the image's (a --size that disagrees
+is an error). Every face counts as opaque.
+A pixel is wrong when the face it shows is not one whose visible piece contains the pixel
+centre (exactly; a centre on a boundary accepts each face there, and background where the
+boundary is the outline of what the faces cover), or when it shows background where faces
+cover the centre. Reported: wrong pixels by kind (wrong face, missing face, extra face, ids
+that are no face of the scene), covered pixels in the image and in the exact set, and the area
+error: the fraction of the image area given to the wrong face (each pixel's area split among
+the faces visible in it). --diff draws wrong faces red, missing or extra faces blue, unknown
+ids magenta, over the image's right faces in grey on white.";
+
 #[derive(Parser)]
 #[command(
     name = "sightline",
@@ -81,13 +106,12 @@ enum Command {
     /// Describe a scene: counts, closedness, bounds, culling, and which stages it needs.
     #[command(after_help = EXAMPLES)]
     Info(InfoArgs),
-    /// Compare two methods' face ids at pixel centres (the z-buffer by default), and time both.
-    /// Covered pixels: covered by either method. Interior pixels: covered by the reference, with
-    /// one face and no background in their 3x3 neighbourhood there (edges sampled differently
-    /// by two correct methods are left out).
-    #[command(
-        after_help = "Examples:\n  sightline compare fixtures/cube.obj --method coverage\n  sightline compare scene.obj --method painter --size 512x512\n  sightline compare scene.obj --method warnock --against scanline\n  sightline compare fixtures/cyclic_bars.obj --method painter --view front --diff diff.png"
-    )]
+    /// Compare two methods' face ids at pixel centres (the z-buffer by default), and time both;
+    /// or, with --image, grade a face-id image made by any renderer against the exact visible
+    /// set. Methods: covered pixels are covered by either method; interior pixels are covered
+    /// by the reference, with one face and no background in their 3x3 neighbourhood there
+    /// (edges sampled differently by two correct methods are left out).
+    #[command(after_help = COMPARE_HELP)]
     Compare(CompareArgs),
     /// Time each stage (load, project + cull, then one method) and report triangles per second.
     #[command(
@@ -287,8 +311,13 @@ struct CompareArgs {
     /// The method to check it against (interior pixels: see `compare --help`).
     #[arg(long, value_parser = method_arg(), default_value = "zbuffer")]
     against: &'static Method,
+    /// Instead of a method, grade this face-id image (made by any renderer, `render --fill id`'s
+    /// colours) against the exact visible set: see `compare --help`.
+    #[arg(long, value_name = "THEIRS.png", conflicts_with_all = ["method", "against"])]
+    image: Option<PathBuf>,
     /// Also write a PNG of the differences: red where the two cover a pixel with different faces,
-    /// blue where only one covers it, over the reference in grey (one level per face) on white.
+    /// blue where only one covers it, over the reference in grey (one level per face) on white;
+    /// with --image, magenta for ids that are no face of the scene.
     #[arg(long, value_name = "FILE.png")]
     diff: Option<PathBuf>,
 }
@@ -658,6 +687,15 @@ fn load_scene(input: &InputArgs) -> sightline::Result<Scene> {
 }
 
 fn camera_for(args: &CameraArgs, scene: &Scene) -> sightline::Result<Camera> {
+    camera_of_size(args, scene, args.size)
+}
+
+/// The camera of the flags with the image size `size` instead of `--size`'s.
+fn camera_of_size(
+    args: &CameraArgs,
+    scene: &Scene,
+    size: Option<(u32, u32)>,
+) -> sightline::Result<Camera> {
     let spec = CameraSpec {
         cam_file: args.cam.as_deref().map(CamFile::read).transpose()?,
         view: args.view,
@@ -668,7 +706,7 @@ fn camera_for(args: &CameraArgs, scene: &Scene) -> sightline::Result<Camera> {
         ortho_height: args.ortho,
         near: args.near,
         far: args.far,
-        size: args.size,
+        size,
     };
     spec.check(args.cam.as_deref())?;
     spec.resolve_for(scene)
@@ -835,6 +873,9 @@ fn face_ids_of(
 }
 
 fn compare(a: CompareArgs) -> sightline::Result<()> {
+    if let Some(image) = &a.image {
+        return compare_image(&a, image);
+    }
     let scene = load_scene(&a.input)?;
     let camera = camera_for(&a.camera, &scene)?;
     let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
@@ -872,6 +913,85 @@ fn compare(a: CompareArgs) -> sightline::Result<()> {
     println!(
         "  time: {} {:.4} s, {} {:.4} s (after load and projection)",
         a.method.name, t_method, a.against.name, t_ref
+    );
+    Ok(())
+}
+
+/// `compare --image`: grades a face-id image against the exact visible set (`grade`).
+fn compare_image(a: &CompareArgs, image_path: &Path) -> sightline::Result<()> {
+    use sightline::grade;
+    let image = grade::id_png::read(image_path)?;
+    let size = (image.width, image.height);
+    if let Some((w, h)) = a.camera.size.filter(|&s| s != size) {
+        return Err(sightline::Error::Options(format!(
+            "--size {w}x{h} disagrees with {}, which is {}x{}: the image's size is the camera's (leave --size out, or give the image's)",
+            image_path.display(),
+            size.0,
+            size.1
+        )));
+    }
+    let scene = load_scene(&a.input)?;
+    let camera = camera_of_size(&a.camera, &scene, Some(size))?;
+    let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
+    let graded = grade::grade(&scene, &prepared.screen, &image.ids);
+    if let Some(path) = &a.diff {
+        let picture = graded.diff_image(&image.ids);
+        write_with(path, |w| png::write_rgb(w, size.0, size.1, &picture))?;
+    }
+    let g = &graded.grade;
+    if g.unknown_id > 0 {
+        let largest = scene.faces.iter().map(|f| f.id).max();
+        eprintln!(
+            "warning: {}: {} pixels hold ids that are no face of the scene (its largest face id is {}): was the image colour-managed (sRGB, gamma), dithered, blended or anti-aliased?",
+            image_path.display(),
+            g.unknown_id,
+            largest.map_or_else(|| "none".into(), |m| m.to_string()),
+        );
+    }
+    let pct = |n: usize| 100.0 * n as f64 / g.pixels.max(1) as f64;
+    println!(
+        "{} against the exact visible set at {}x{} ({} pixels):",
+        image_path.display(),
+        size.0,
+        size.1,
+        g.pixels
+    );
+    println!(
+        "  covered pixels  image {}, exact {} (centre inside or on a visible piece)",
+        g.image_covered, g.exact_covered
+    );
+    println!(
+        "  wrong pixels    {} ({:.4}% of the pixels)",
+        g.wrong,
+        pct(g.wrong)
+    );
+    for (label, n, what) in [
+        (
+            "wrong face  ",
+            g.wrong_face,
+            "a face not seen at the centre",
+        ),
+        (
+            "missing face",
+            g.missing_face,
+            "background where faces cover the centre",
+        ),
+        (
+            "extra face  ",
+            g.extra_face,
+            "a face where the exact set has background",
+        ),
+        ("unknown id  ", g.unknown_id, "no face id of the scene"),
+    ] {
+        println!("    {label}  {n} ({what})");
+    }
+    println!(
+        "  tie pixels      {} (centre on a boundary: each face there is right, and background on the outline)",
+        g.ties
+    );
+    println!(
+        "  area error      {:.6}% (of the image area given to the wrong face)",
+        100.0 * g.area_error
     );
     Ok(())
 }

@@ -173,14 +173,17 @@ pub fn diff_image(reference: &[Option<u32>], ids: &[Option<u32>]) -> Vec<[u8; 3]
         .map(|(r, m)| match (r, m) {
             (Some(a), Some(b)) if a != b => DIFF_MISMATCH,
             (Some(_), None) | (None, Some(_)) => DIFF_COVERAGE,
-            (Some(id), _) => {
-                // A hash of the id spreads neighbouring faces over 96..=207.
-                let g = 96 + (id.wrapping_mul(0x9E37_79B1) >> 24) % 112;
-                [g as u8; 3]
-            }
+            (Some(id), _) => diff_grey(*id),
             (None, None) => [255; 3],
         })
         .collect()
+}
+
+/// The grey a face is drawn in under a difference picture's marks: one level per face id in
+/// 96..=207 (a hash of the id, so neighbouring faces differ and face boundaries show).
+pub fn diff_grey(id: u32) -> [u8; 3] {
+    let g = 96 + (id.wrapping_mul(0x9E37_79B1) >> 24) % 112;
+    [g as u8; 3]
 }
 
 #[cfg(test)]
