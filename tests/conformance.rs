@@ -189,3 +189,78 @@ fn auto_subdivides_a_soup_of_large_crossing_faces() {
     assert!(order.contains("Warnock"), "{order}");
     assert!(got.stats["depth_complexity_estimate"].as_f64().unwrap() > 8.0);
 }
+
+/// `auto` hands large faces lying over many small ones (a housing: three plates in front of a
+/// grid of small spheres, the front row poking through the nearest plate) to Weiler–Atherton
+/// clipping, and says so; the set is the map's.
+#[test]
+fn auto_clips_large_faces_over_many_small_ones() {
+    use sightline::scene::SceneBuilder;
+    use sightline::scene::primitives::{add_box, add_sphere};
+    use sightline::visibility::auto::Orderer;
+    type V = glam::DVec3;
+    let Engine::Object(auto) = method("auto").unwrap().engine else {
+        panic!("auto is an object-space method")
+    };
+    let mut b = SceneBuilder::new("housing");
+    let m = b.default_material();
+    b.begin_mesh("parts");
+    for i in 0..5 {
+        for j in 0..5 {
+            let at = V::new(
+                0.8 * i as f64 - 1.6,
+                0.8 * j as f64 - 1.6,
+                if i == 0 { 0.3 } else { 0.0 },
+            );
+            add_sphere(&mut b, &glam::DMat4::from_translation(at), 0.3, 12, 8, m);
+        }
+    }
+    b.begin_mesh("housing");
+    for z in [0.55, 0.9, 1.2] {
+        let at = glam::DMat4::from_translation(V::new(0.1, 0.05, z));
+        add_box(&mut b, &at, V::new(3.4, 3.2, 0.05), m);
+    }
+    let scene = b.finish().unwrap();
+    let camera = Camera::fit(
+        NamedView::Front,
+        scene.bounds().unwrap(),
+        false,
+        40.0,
+        96,
+        80,
+    );
+    let screen = prepare(&scene, &camera, CullMode::Auto).screen;
+    let got = auto.visible_set(&screen, &|_| false, None);
+    let want = CoverageMap.visible_set(&screen, &|_| false, None);
+    assert!(got.symmetric_difference(&want).is_empty());
+    let order = got.stats["stage_order"].as_str().unwrap();
+    assert_eq!(
+        got.stats["chosen"],
+        Orderer::WeilerAtherton.name(),
+        "{order}"
+    );
+    assert!(order.contains("Weiler-Atherton clipping"), "{order}");
+    assert!(got.stats["hidden_parts"].as_u64().unwrap() > 0, "{order}");
+}
+
+/// Weiler–Atherton under a recursion limit gives up (for `auto` to fall back on the map) exactly
+/// when the scene needs deeper recursion: interpenetrating faces need one level, a culled
+/// sphere none.
+#[test]
+fn weiler_atherton_gives_up_only_beyond_its_recursion_limit() {
+    use sightline::visibility::{initial_pieces, weiler_atherton::visible_pieces_within};
+    let views = |scene: &sightline::scene::Scene| {
+        let camera = Camera::fit(NamedView::Iso, scene.bounds().unwrap(), false, 40.0, 96, 80);
+        prepare(scene, &camera, CullMode::Auto).screen
+    };
+    let crossing = views(
+        &sightline::load(std::path::Path::new("fixtures/interpenetrating.obj"), None).unwrap(),
+    );
+    let pieces = initial_pieces(&crossing);
+    assert!(visible_pieces_within(&crossing, pieces.clone(), None, 0).is_none());
+    let (_, st) = visible_pieces_within(&crossing, pieces, None, 1).expect("one level is enough");
+    assert_eq!((st.recursions > 0, st.deepest), (true, 1));
+    let sphere = views(&sightline::scene::primitives::sphere_scene(500));
+    let (_, st) = visible_pieces_within(&sphere, initial_pieces(&sphere), None, 0).unwrap();
+    assert_eq!(st.recursions, 0);
+}

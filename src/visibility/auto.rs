@@ -14,19 +14,24 @@
 //! - **blend**: translucent faces need the exact back-to-front order of their fragments (a BSP of
 //!   their pieces, layered over the opaque visible set).
 //!
-//! Which strategy orders what overlaps: the coverage map, unless the overlapping pieces are a
-//! soup of large crossing faces ([`depth_complexity`] above [`SUBDIVIDE_ABOVE_DEPTH`]), where
-//! Warnock's subdivision at object precision drops far pieces wholesale behind surrounding
-//! ones instead of cutting them by every nearer piece. Not yet: depth-separable groups handed
-//! to Newell's sort, per-group choices (see PROGRESS.md). Invariant: the visible set is the
-//! coverage map's, so the drawing's bytes are the same whichever strategy ran.
+//! Which strategy orders what overlaps ([`Crowding::choose`], from cheap f64 measures of the
+//! pieces' screen boxes, never a decision about what is visible): Warnock's subdivision at
+//! object precision for a soup of large crossing faces (it drops far pieces wholesale behind
+//! surrounding ones instead of cutting them by every nearer piece); Weiler–Atherton clipping
+//! where large pieces lie over many small ones (CAD housings over hidden parts: each clip
+//! polygon drops everything behind it at once) or the pieces are slivers, given up for the
+//! coverage map when its recursion runs deep; the coverage map for pieces of like size (scans
+//! of one surface). Not yet: depth-separable groups handed to Newell's sort, per-group
+//! choices (see PROGRESS.md). The `chosen` statistic names what ran. Invariant: the visible set
+//! is the coverage map's whatever ran (every exact strategy's is), so the drawing's bytes are
+//! the same.
 
 use super::coverage_map::coverage_of;
 use super::grid::sweep_overlapping;
 use super::tiling::tiles_convex_region_once;
 use super::visible_set::{Stats, VisibleSet, put_counts};
-use super::warnock_exact;
 use super::{CoverageMap, Strategy, initial_pieces, translucent_polygons};
+use super::{warnock_exact, weiler_atherton};
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::fallback_count;
 use crate::progress::Report;
@@ -83,19 +88,20 @@ impl Strategy for Auto {
                 "done where needed by the coverage map (translucent scene)".into(),
             );
             let mut v = CoverageMap.visible_set(screen, translucent, report);
+            stats.insert("chosen".into(), "coverage".into());
             v.stats.append(&mut stats);
             return v;
         }
         stage(&mut stats, "blend", "skipped: every face is opaque".into());
         let pieces = initial_pieces(screen);
         let whole = whole_meshes(screen);
-        let (mut visible, overlapping): (Vec<Piece>, Vec<Piece>) = pieces
+        let (mut visible, mut overlapping): (Vec<Piece>, Vec<Piece>) = pieces
             .into_iter()
             .partition(|p| whole.placed[screen.polys[p.poly as usize].mesh as usize]);
         let placed = visible.len();
         let n = overlapping.len();
-        let depth = depth_complexity(&overlapping);
-        stats.insert("depth_complexity_estimate".into(), depth.into());
+        let crowding = Crowding::of(screen, &overlapping);
+        crowding.put(&mut stats);
         let whole_meshes = whole.placed.iter().filter(|&&w| w).count();
         put_counts(
             &mut stats,
@@ -116,7 +122,13 @@ impl Strategy for Auto {
                 count(placed, "piece placed whole", "pieces placed whole")
             ),
         };
-        if n > 0 && depth > SUBDIVIDE_ABOVE_DEPTH {
+        let (orderer, why) = crowding.choose();
+        let mut chosen = match n {
+            0 => "nothing to order",
+            _ => orderer.name(),
+        }
+        .to_string();
+        if n > 0 && orderer == Orderer::Warnock {
             // Large faces crossing many others (a soup): the coverage map would cut each far
             // piece by every nearer one before all of it vanished; Warnock's subdivision drops
             // it wherever one surrounding face hides it.
@@ -126,10 +138,8 @@ impl Strategy for Auto {
                 &mut stats,
                 "order",
                 format!(
-                    "{skipped}done by Warnock's subdivision at object precision for {}: \
-                     estimated depth complexity {depth:.1} (their number times the median \
-                     screen box, over the box of all) is above {SUBDIVIDE_ABOVE_DEPTH}; {} settled by one \
-                     surrounding face in front, {} hidden pieces dropped",
+                    "{skipped}done by Warnock's subdivision at object precision for {} ({why}): \
+                     {} settled by one surrounding face in front, {} hidden pieces dropped",
                     count(n, "overlapping piece", "overlapping pieces"),
                     count(ws.settled, "area", "areas"),
                     ws.hidden
@@ -151,11 +161,79 @@ impl Strategy for Auto {
                     ("leaves_clipped", ws.leaves),
                 ],
             );
+            stats.insert("chosen".into(), chosen.into());
             return VisibleSet::exact(screen, visible, Vec::new(), stats, fallbacks);
+        }
+        let mut given_up = String::new();
+        if n > 0 && orderer == Orderer::WeilerAtherton {
+            // Given up, the pieces are made again (cheaper than keeping a copy of them all).
+            let pieces = std::mem::take(&mut overlapping);
+            match weiler_atherton::visible_pieces_within(
+                screen,
+                pieces,
+                report,
+                DEEPEST_CLIP_RECURSION,
+            ) {
+                Some((pieces, ws)) => {
+                    visible.extend(pieces);
+                    stage(
+                        &mut stats,
+                        "order",
+                        format!(
+                            "{skipped}done by Weiler-Atherton clipping for {} ({why}): {} \
+                             clipped {} pieces, {} hidden parts dropped",
+                            count(n, "overlapping piece", "overlapping pieces"),
+                            count(ws.clip_polygons, "clip polygon", "clip polygons"),
+                            ws.clipped,
+                            ws.hidden
+                        ),
+                    );
+                    stage(
+                        &mut stats,
+                        "split",
+                        if ws.recursions == 0 {
+                            "skipped: no clipped part reaches in front of its clip polygon".into()
+                        } else {
+                            format!(
+                                "done: {} where a part reaches in front of its clip polygon \
+                                 (cut by its plane, {} deep at most)",
+                                count(ws.recursions, "recursion", "recursions"),
+                                count(ws.deepest, "level", "levels")
+                            )
+                        },
+                    );
+                    put_counts(
+                        &mut stats,
+                        [
+                            ("clip_polygons", ws.clip_polygons),
+                            ("clipped", ws.clipped),
+                            ("hidden_parts", ws.hidden),
+                            ("recursions", ws.recursions),
+                        ],
+                    );
+                    stats.insert("chosen".into(), chosen.into());
+                    return VisibleSet::exact(screen, visible, Vec::new(), stats, fallbacks);
+                }
+                None => {
+                    given_up = format!(
+                        "Weiler-Atherton clipping ({why}) given up at {DEEPEST_CLIP_RECURSION} \
+                         levels of recursion; "
+                    );
+                    chosen = "coverage after weiler-atherton".into();
+                    overlapping = initial_pieces(screen)
+                        .into_iter()
+                        .filter(|p| !whole.placed[screen.polys[p.poly as usize].mesh as usize])
+                        .collect();
+                }
+            }
         }
         let coverage = coverage_of(screen, overlapping, report);
         let cs = coverage.stats.clone();
         visible.extend(coverage.into_pieces());
+        let why = match orderer {
+            Orderer::CoverageMap => format!(" ({why})"),
+            _ => String::new(),
+        };
         stage(
             &mut stats,
             "order",
@@ -165,8 +243,8 @@ impl Strategy for Auto {
                 format!("{skipped}skipped: none of the other {n} pieces meets another on screen")
             } else {
                 format!(
-                    "{skipped}done by the coverage map where pieces meet on screen (estimated \
-                     depth complexity {depth:.1}): {} for {}, {} cut back by nearer ones",
+                    "{skipped}{given_up}done by the coverage map where pieces meet on \
+                     screen{why}: {} for {}, {} cut back by nearer ones",
                     count(
                         cs.overlap_tests,
                         "exact overlap test",
@@ -200,28 +278,100 @@ impl Strategy for Auto {
                 ("plane_splits", cs.plane_splits),
             ],
         );
+        stats.insert("chosen".into(), chosen.into());
         VisibleSet::exact(screen, visible, Vec::new(), stats, fallbacks)
     }
 }
 
-/// Above this estimated depth complexity ([`depth_complexity`]) the overlapping pieces go to
-/// Warnock's subdivision at object precision rather than the coverage map. Measured (bench
-/// --repeat 3, one run): soups of 100, 300 and 1,000 large triangles (estimates far above 8)
-/// took 0.024, 0.12 and 0.57 s there against 0.054, 0.44 and 5.0 s in the map; meshes are 1.6
-/// to 6 times faster in the map (samurai_monastery 10.3 s against 16.6 s: its mean-box estimate
-/// is 39, from a few huge faces, its median-box estimate small).
+/// What orders the pieces that are not placed whole.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Orderer {
+    /// The coverage map ([`CoverageMap`]): front to back, each piece cut back by the nearer
+    /// pieces it meets.
+    CoverageMap,
+    /// Weiler–Atherton clipping ([`weiler_atherton`]): each clip polygon drops everything
+    /// behind it inside its region at once.
+    WeilerAtherton,
+    /// Warnock's subdivision at object precision ([`warnock_exact`]).
+    Warnock,
+}
+
+impl Orderer {
+    /// The registry name of the strategy.
+    pub fn name(self) -> &'static str {
+        match self {
+            Orderer::CoverageMap => "coverage",
+            Orderer::WeilerAtherton => "weiler-atherton",
+            Orderer::Warnock => "warnock-exact",
+        }
+    }
+}
+
+/// Above this estimated depth complexity ([`Crowding::depth_median`]), a soup (at least
+/// [`SOUP_BACK_SHARE`] of its pieces seen from the back) goes to Warnock's subdivision.
+/// Measured (bench --repeat 3, one run): soups of 100, 300 and 1,000 large triangles (estimates
+/// far above 8) took 0.024, 0.12 and 0.57 s there against 0.054, 0.44 and 5.0 s in the map.
 pub const SUBDIVIDE_ABOVE_DEPTH: f64 = 8.0;
 
-/// How many pieces lie over a point, estimated from boxes as if every piece had the median
-/// piece's box: the piece count times the median box area, over the area of the box of all.
-/// Large for a soup of large crossing faces, small for meshes even when a few huge faces
-/// (a ground plane, walls) lie under everything, which a mean would count. A choice of method,
-/// never a decision about what is visible.
-pub fn depth_complexity(pieces: &[Piece]) -> f64 {
-    let mut all = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
-    let mut areas: Vec<f64> = pieces
-        .iter()
-        .map(|p| {
+/// The share of pieces seen from the back from which the pieces are a soup (or open surfaces
+/// seen from both sides), not culled closed meshes: these keep about half their faces back
+/// facing, culled ones none. Closed meshes with crowded boxes (gears: 9 to 11 estimated)
+/// were 5 to 13 times slower in Warnock's subdivision than clipped.
+pub const SOUP_BACK_SHARE: f64 = 0.25;
+
+/// Weiler–Atherton clipping is chosen when large pieces lie over many small ones: the mean
+/// box depth ([`Crowding::depth_mean`]) at least this, and at least [`SKEW`] times the median
+/// one. CAD assemblies (housings over hidden parts: counter 0.37x the map's time,
+/// featuretype 0.48x, idler_riser 0.40x, plate_holes 0.42x, xarm6_link2 0.60x, one run of
+/// `examples`-style timing over `../shared/meshes` at 256 px) are so; scans of one surface
+/// (bunny 1.44x, buddha 1.30x, fertility 1.45x, horse 1.27x) are not.
+pub const CLIP_ABOVE_MEAN_DEPTH: f64 = 2.5;
+
+/// See [`CLIP_ABOVE_MEAN_DEPTH`].
+pub const SKEW: f64 = 1.5;
+
+/// Weiler–Atherton clipping is also chosen for slivers: the median piece's box at least this
+/// many times its area (2 for a right triangle on the axes, about 3 for a mesh of well shaped
+/// triangles; gear teeth 10 to 13: diff_pinion 0.76x, diff_ring_gear 0.81x the map's time).
+/// A sliver's box meets many others' on screen, which the map tests one by one.
+pub const SLIVER_BOX_RATIO: f64 = 8.0;
+
+/// Weiler–Atherton clipping is given up (for the coverage map) when its recursion goes deeper:
+/// large faces whose nearest corner is near but whose body lies behind others keep finding
+/// nearer polygons inside them (samurai_monastery: 1,045 levels, 5x the map's time; given up
+/// at 96 levels after 0.5 s, at 192 after 0.9 s, at 384 after 7.1 s, of the map's 11 s). The
+/// CAD meshes where clipping pays recurse up to 145 levels (octagonal_pocket; xarm6_link2 38,
+/// ur5e_upperarm 62, gears 10).
+pub const DEEPEST_CLIP_RECURSION: usize = 160;
+
+/// Cheap measures of how the pieces to order lie on screen, from f64 boxes and areas: they
+/// choose a strategy, never decide what is visible.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Crowding {
+    /// The number of pieces.
+    pub pieces: usize,
+    /// How many pieces lie over a point, estimated as if every piece had the median piece's
+    /// box: the count times the median box area, over the area of the box of all. Large for a
+    /// soup of large crossing faces, small for meshes even when a few huge faces (a ground,
+    /// walls) lie under everything.
+    pub depth_median: f64,
+    /// The same with the mean box: the sum of the box areas over the area of the box of all.
+    /// Far above [`Self::depth_median`] when a few large pieces lie over many small ones.
+    pub depth_mean: f64,
+    /// The share of pieces seen from their back.
+    pub back_share: f64,
+    /// The median over pieces of box area over piece area (slivers: large).
+    pub sliver: f64,
+}
+
+impl Crowding {
+    /// The measures of `pieces`.
+    pub fn of(screen: &ScreenScene, pieces: &[Piece]) -> Crowding {
+        let mut all = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+        let mut boxes = Vec::with_capacity(pieces.len());
+        let mut ratios = Vec::with_capacity(pieces.len());
+        let mut back = 0usize;
+        for p in pieces {
             let b = p.bounds();
             all = [
                 all[0].min(b[0]),
@@ -229,16 +379,91 @@ pub fn depth_complexity(pieces: &[Piece]) -> f64 {
                 all[2].max(b[2]),
                 all[3].max(b[3]),
             ];
-            (b[2] - b[0]).max(0.0) * (b[3] - b[1]).max(0.0)
-        })
-        .collect();
-    let area = (all[2] - all[0]) * (all[3] - all[1]);
-    if areas.is_empty() || area <= 0.0 {
-        return 0.0;
+            let box_area = (b[2] - b[0]).max(0.0) * (b[3] - b[1]).max(0.0);
+            let v = p.vertices_f64();
+            let twice: f64 = (0..v.len())
+                .map(|k| {
+                    let (a, c) = (v[k], v[(k + 1) % v.len()]);
+                    a[0] * c[1] - c[0] * a[1]
+                })
+                .sum();
+            let area = 0.5 * twice.abs();
+            boxes.push(box_area);
+            ratios.push(if area > 0.0 {
+                box_area / area
+            } else {
+                f64::MAX
+            });
+            back += !screen.polys[p.poly as usize].front as usize;
+        }
+        let area = (all[2] - all[0]) * (all[3] - all[1]);
+        let n = pieces.len();
+        if n == 0 || area <= 0.0 {
+            return Crowding {
+                pieces: n,
+                ..Crowding::default()
+            };
+        }
+        let median = |v: &mut Vec<f64>| *v.select_nth_unstable_by(n / 2, f64::total_cmp).1;
+        Crowding {
+            pieces: n,
+            depth_median: n as f64 * median(&mut boxes) / area,
+            depth_mean: boxes.iter().sum::<f64>() / area,
+            back_share: back as f64 / n as f64,
+            sliver: median(&mut ratios),
+        }
     }
-    let mid = areas.len() / 2;
-    let (_, median, _) = areas.select_nth_unstable_by(mid, f64::total_cmp);
-    pieces.len() as f64 * *median / area
+
+    /// The strategy for these pieces, and why (see the constants).
+    pub fn choose(&self) -> (Orderer, String) {
+        let Crowding {
+            depth_median: med,
+            depth_mean: mean,
+            back_share: back,
+            sliver,
+            ..
+        } = *self;
+        if med > SUBDIVIDE_ABOVE_DEPTH && back >= SOUP_BACK_SHARE {
+            (
+                Orderer::Warnock,
+                format!(
+                    "a soup: estimated depth complexity {med:.1} above {SUBDIVIDE_ABOVE_DEPTH}, \
+                     {:.0} % seen from the back",
+                    100.0 * back
+                ),
+            )
+        } else if mean >= CLIP_ABOVE_MEAN_DEPTH && mean >= SKEW * med {
+            (
+                Orderer::WeilerAtherton,
+                format!(
+                    "large pieces over many small ones: mean box depth {mean:.1}, median box \
+                     depth {med:.1}"
+                ),
+            )
+        } else if sliver >= SLIVER_BOX_RATIO {
+            (
+                Orderer::WeilerAtherton,
+                format!("slivers: the median piece's box is {sliver:.1} times its area"),
+            )
+        } else {
+            (
+                Orderer::CoverageMap,
+                format!("pieces of like size: mean box depth {mean:.1}, median box depth {med:.1}"),
+            )
+        }
+    }
+
+    /// Records the measures in `stats`.
+    fn put(&self, stats: &mut Stats) {
+        for (k, v) in [
+            ("depth_complexity_estimate", self.depth_median),
+            ("mean_box_depth", self.depth_mean),
+            ("back_share", self.back_share),
+            ("sliver_box_ratio", self.sliver),
+        ] {
+            stats.insert(k.into(), v.into());
+        }
+    }
 }
 
 /// Records what a stage did, or why it was skipped (`stage_{name}`; `--stats` prints these as
@@ -300,5 +525,51 @@ fn whole_meshes(screen: &ScreenScene) -> WholeMeshes {
         placed,
         on_screen: order.len(),
         apart: order.iter().filter(|&&m| !crowded[m]).count(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn crowding(depth_median: f64, depth_mean: f64, back_share: f64, sliver: f64) -> Crowding {
+        Crowding {
+            pieces: 1000,
+            depth_median,
+            depth_mean,
+            back_share,
+            sliver,
+        }
+    }
+
+    #[test]
+    fn each_orderer_is_chosen_for_its_kind_of_scene() {
+        let chose = |c: Crowding| c.choose().0;
+        // A soup: crowded boxes, half seen from the back.
+        assert_eq!(chose(crowding(90.0, 100.0, 0.5, 3.0)), Orderer::Warnock);
+        // Culled gears: as crowded, nothing seen from the back, slivers: clipped, not subdivided.
+        assert_eq!(
+            chose(crowding(11.2, 13.5, 0.0, 13.4)),
+            Orderer::WeilerAtherton
+        );
+        // A housing over small parts (counter).
+        assert_eq!(
+            chose(crowding(0.05, 3.4, 0.0, 3.3)),
+            Orderer::WeilerAtherton
+        );
+        // A scan of one surface (bunny), and a soup too sparse to subdivide.
+        assert_eq!(chose(crowding(3.0, 3.1, 0.0, 2.5)), Orderer::CoverageMap);
+        assert_eq!(chose(crowding(2.0, 2.2, 0.5, 3.0)), Orderer::CoverageMap);
+        // The thresholds themselves.
+        assert_eq!(chose(crowding(1.0, 2.4, 0.0, 2.5)), Orderer::CoverageMap);
+        assert_eq!(chose(crowding(1.0, 2.5, 0.0, 2.5)), Orderer::WeilerAtherton);
+        assert_eq!(chose(crowding(2.0, 2.9, 0.0, 2.5)), Orderer::CoverageMap);
+        assert_eq!(chose(crowding(2.0, 2.5, 0.0, 8.0)), Orderer::WeilerAtherton);
+    }
+
+    #[test]
+    fn no_pieces_measure_zero() {
+        let screen = ScreenScene::default();
+        assert_eq!(Crowding::of(&screen, &[]), Crowding::default());
     }
 }

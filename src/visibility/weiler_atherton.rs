@@ -84,14 +84,33 @@ pub fn visible_pieces(
     pieces: Vec<Piece>,
     report: Option<Report>,
 ) -> (Vec<Piece>, WeilerAthertonStats) {
+    visible_pieces_within(screen, pieces, report, usize::MAX).expect("no limit on the recursion")
+}
+
+/// [`visible_pieces`], given up (`None`) as soon as the recursion goes deeper than
+/// `deepest_allowed` levels: the sign of clip polygons that keep finding nearer polygons inside
+/// them (large faces whose nearest corner is near but whose body lies behind others), where
+/// the subdivision costs far more than the coverage map. `auto` falls back on the map then.
+pub fn visible_pieces_within(
+    screen: &ScreenScene,
+    pieces: Vec<Piece>,
+    report: Option<Report>,
+    deepest_allowed: usize,
+) -> Option<(Vec<Piece>, WeilerAthertonStats)> {
     let mut st = WeilerAthertonStats::default();
     let mut out = Vec::new();
     let mut ticker = Ticker::new(report, "visible set", screen.polys.len() as u64);
-    resolve(screen, pieces, None, &mut out, &mut st, 0, &mut |done| {
-        ticker.tick(done)
-    });
+    let finished = resolve(
+        screen,
+        pieces,
+        None,
+        &mut out,
+        &mut st,
+        (0, deepest_allowed),
+        &mut |done| ticker.tick(done),
+    );
     ticker.finish();
-    (out, st)
+    finished.then_some((out, st))
 }
 
 /// Weiler and Atherton's order of clip polygons: nearest corner first, then the z-buffer's tie
@@ -103,16 +122,20 @@ pub(crate) fn clip_order(screen: &ScreenScene, poly: u32) -> impl Ord {
 }
 
 /// Writes the visible parts of `pieces` to `out`, taking `first`'s polygon as the first clip
-/// polygon when given. `done(k)`: k clip polygons of this level are done.
+/// polygon when given. `done(k)`: k clip polygons of this level are done. `(level, deepest
+/// allowed)`: false, with `out` incomplete, when the recursion would go deeper.
 fn resolve(
     screen: &ScreenScene,
     pieces: Vec<Piece>,
     first: Option<u32>,
     out: &mut Vec<Piece>,
     st: &mut WeilerAthertonStats,
-    level: usize,
+    (level, deepest_allowed): (usize, usize),
     done: &mut dyn FnMut(u64),
-) {
+) -> bool {
+    if level > deepest_allowed {
+        return false;
+    }
     st.deepest = st.deepest.max(level);
     let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
     let mut list = Live::over(&boxes, boxes.len());
@@ -166,14 +189,17 @@ fn resolve(
             .expect("not empty");
         let mut inside = region;
         inside.extend(in_front);
-        resolve(
+        if !resolve(
             screen,
             inside,
             Some(offender),
             out,
             st,
-            level + 1,
+            (level + 1, deepest_allowed),
             &mut |_| {},
-        );
+        ) {
+            return false;
+        }
     }
+    true
 }
