@@ -498,6 +498,19 @@ fn count(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
+/// Eight directions in counterclockwise order (y up or down alike: the order only has to go
+/// once around).
+const DIRECTIONS: [[i64; 2]; 8] = [
+    [1, 0],
+    [1, 1],
+    [0, 1],
+    [-1, 1],
+    [-1, 0],
+    [-1, -1],
+    [0, -1],
+    [1, -1],
+];
+
 /// Which meshes need no ordering at all: see [`whole_meshes`].
 struct WholeMeshes {
     /// Per mesh (index into `Scene::meshes`): its pieces are visible whole.
@@ -521,13 +534,46 @@ fn whole_meshes(screen: &ScreenScene) -> WholeMeshes {
         .unwrap_or(0);
     let mut boxes = vec![[i64::MAX, i64::MAX, i64::MIN, i64::MIN]; meshes];
     let mut polys_of: Vec<Vec<u32>> = vec![Vec::new(); meshes];
+    // Twice the polygons' projected areas, summed per mesh, and the corners farthest in eight
+    // directions: exact on the grid.
+    let mut twice_areas = vec![0i128; meshes];
+    let mut extremes = vec![[None::<[i64; 2]>; 8]; meshes];
     for (k, p) in screen.polys.iter().enumerate() {
-        let b = &mut boxes[p.mesh as usize];
-        for c in screen.corners(p) {
+        let m = p.mesh as usize;
+        let b = &mut boxes[m];
+        let corners = screen.corners(p);
+        let mut twice = 0i128;
+        for (i, c) in corners.iter().enumerate() {
             *b = [b[0].min(c.x), b[1].min(c.y), b[2].max(c.x), b[3].max(c.y)];
+            let d = &corners[(i + 1) % corners.len()];
+            twice += c.x as i128 * d.y as i128 - d.x as i128 * c.y as i128;
+            for (e, [u, v]) in extremes[m].iter_mut().zip(DIRECTIONS) {
+                let reach = |q: [i64; 2]| u as i128 * q[0] as i128 + v as i128 * q[1] as i128;
+                if e.is_none_or(|q| reach([c.x, c.y]) > reach(q)) {
+                    *e = Some([c.x, c.y]);
+                }
+            }
         }
-        polys_of[p.mesh as usize].push(k as u32);
+        twice_areas[m] += twice.abs();
+        polys_of[m].push(k as u32);
     }
+    // Faces covering a convex outline once add up to its area, which is at most its box's and
+    // at least that of the polygon of its corners farthest in eight directions (inscribed in
+    // the outline, they being on it in turn): an exact test that spares the tiling check on
+    // most meshes that fail it.
+    let may_tile = |m: usize| {
+        let b = boxes[m];
+        let box_area = (b[2] - b[0]) as i128 * (b[3] - b[1]) as i128;
+        let ring: Vec<[i64; 2]> = extremes[m].iter().flatten().copied().collect();
+        let inscribed = (0..ring.len())
+            .map(|i| {
+                let (c, d) = (ring[i], ring[(i + 1) % ring.len()]);
+                c[0] as i128 * d[1] as i128 - d[0] as i128 * c[1] as i128
+            })
+            .sum::<i128>()
+            .abs();
+        (inscribed..=2 * box_area).contains(&twice_areas[m])
+    };
     // A mesh is crowded when its box's interior meets another's.
     let order: Vec<usize> = (0..meshes).filter(|&m| !polys_of[m].is_empty()).collect();
     let on_screen: Vec<[i64; 4]> = order.iter().map(|&m| boxes[m]).collect();
@@ -539,7 +585,10 @@ fn whole_meshes(screen: &ScreenScene) -> WholeMeshes {
     });
     let placed: Vec<bool> = (0..meshes)
         .map(|m| {
-            !polys_of[m].is_empty() && !crowded[m] && tiles_convex_region_once(screen, &polys_of[m])
+            !polys_of[m].is_empty()
+                && !crowded[m]
+                && may_tile(m)
+                && tiles_convex_region_once(screen, &polys_of[m])
         })
         .collect();
     WholeMeshes {
