@@ -134,93 +134,23 @@ impl Strategy for Auto {
             _ => orderer.name(),
         }
         .to_string();
-        if n > 0 && orderer == Orderer::Warnock {
-            // Large faces crossing many others (a soup): the coverage map would cut each far
-            // piece by every nearer one before all of it vanished; Warnock's subdivision drops
-            // it wherever one surrounding face hides it.
-            let (pieces, ws) = warnock_exact::visible_pieces(screen, &overlapping, report);
-            visible.extend(pieces);
-            stage(
-                &mut stats,
-                "order",
-                format!(
-                    "{skipped}done by Warnock's subdivision at object precision for {} ({why}): \
-                     {} settled by one surrounding face in front, {} hidden pieces dropped",
-                    count(n, "overlapping piece", "overlapping pieces"),
-                    count(ws.settled, "area", "areas"),
-                    ws.hidden
-                ),
-            );
-            stage(
-                &mut stats,
-                "split",
-                format!(
-                    "done only in {} (clipped exactly, Weiler-Atherton)",
-                    count(ws.leaves, "small area", "small areas")
-                ),
-            );
-            put_counts(
-                &mut stats,
-                [
-                    ("areas", ws.areas),
-                    ("areas_settled", ws.settled),
-                    ("leaves_clipped", ws.leaves),
-                ],
-            );
-            stats.insert("chosen".into(), chosen.into());
-            return VisibleSet::exact(screen, visible, Vec::new(), stats, fallbacks);
-        }
+        // Each orderer writes its stage lines and counters; clipping may give up for the map.
         let mut given_up = String::new();
-        if n > 0 && orderer == Orderer::WeilerAtherton {
-            // Given up, the pieces are made again (cheaper than keeping a copy of them all).
-            let pieces = std::mem::take(&mut overlapping);
-            match weiler_atherton::visible_pieces_within(
+        let ordered = match orderer {
+            _ if n == 0 => None,
+            Orderer::Warnock => Some(by_subdivision(
                 screen,
-                pieces,
+                &overlapping,
                 report,
-                DEEPEST_CLIP_RECURSION,
-            ) {
-                Some((pieces, ws)) => {
-                    visible.extend(pieces);
-                    stage(
-                        &mut stats,
-                        "order",
-                        format!(
-                            "{skipped}done by Weiler-Atherton clipping for {} ({why}): {} \
-                             clipped {} pieces, {} hidden parts dropped",
-                            count(n, "overlapping piece", "overlapping pieces"),
-                            count(ws.clip_polygons, "clip polygon", "clip polygons"),
-                            ws.clipped,
-                            ws.hidden
-                        ),
-                    );
-                    stage(
-                        &mut stats,
-                        "split",
-                        if ws.recursions == 0 {
-                            "skipped: no clipped part reaches in front of its clip polygon".into()
-                        } else {
-                            format!(
-                                "done: {} where a part reaches in front of its clip polygon \
-                                 (cut by its plane, {} deep at most)",
-                                count(ws.recursions, "recursion", "recursions"),
-                                count(ws.deepest, "level", "levels")
-                            )
-                        },
-                    );
-                    put_counts(
-                        &mut stats,
-                        [
-                            ("clip_polygons", ws.clip_polygons),
-                            ("clipped", ws.clipped),
-                            ("hidden_parts", ws.hidden),
-                            ("recursions", ws.recursions),
-                        ],
-                    );
-                    stats.insert("chosen".into(), chosen.into());
-                    return VisibleSet::exact(screen, visible, Vec::new(), stats, fallbacks);
-                }
-                None => {
+                &mut stats,
+                &skipped,
+                &why,
+            )),
+            Orderer::WeilerAtherton => {
+                let pieces = std::mem::take(&mut overlapping);
+                let clipped = by_clipping(screen, pieces, report, &mut stats, &skipped, &why);
+                if clipped.is_none() {
+                    // Given up, the pieces are made again (cheaper than keeping a copy).
                     given_up = format!(
                         "Weiler-Atherton clipping ({why}) given up at {DEEPEST_CLIP_RECURSION} \
                          levels of recursion; "
@@ -231,62 +161,179 @@ impl Strategy for Auto {
                         .filter(|p| !whole.placed[screen.polys[p.poly as usize].mesh as usize])
                         .collect();
                 }
+                clipped
             }
-        }
-        let coverage = coverage_of(screen, overlapping, report);
-        let cs = coverage.stats.clone();
-        visible.extend(coverage.into_pieces());
-        let why = match orderer {
-            Orderer::CoverageMap => format!(" ({why})"),
-            _ => String::new(),
+            Orderer::CoverageMap => None,
         };
-        stage(
-            &mut stats,
-            "order",
-            if n == 0 {
-                format!("{skipped}nothing left to order")
-            } else if cs.overlap_tests == 0 {
-                format!("{skipped}skipped: none of the other {n} pieces meets another on screen")
-            } else {
-                format!(
-                    "{skipped}{given_up}done by the coverage map where pieces meet on \
-                     screen{why}: {} for {}, {} cut back by nearer ones",
-                    count(
-                        cs.overlap_tests,
-                        "exact overlap test",
-                        "exact overlap tests"
-                    ),
-                    count(n, "piece", "pieces"),
-                    count(cs.replaced, "visible piece", "visible pieces")
-                )
-            },
-        );
-        stage(
-            &mut stats,
-            "split",
-            if cs.plane_splits == 0 {
-                "skipped: no overlapping pair reaches in front of the other's plane where they \
-                 overlap (pieces only clipped)"
-                    .into()
-            } else {
-                format!(
-                    "done: {} split where their planes meet",
-                    count(cs.plane_splits, "overlapping pair", "overlapping pairs")
-                )
-            },
-        );
-        put_counts(
-            &mut stats,
-            [
-                ("pieces", cs.inserted),
-                ("overlap_tests", cs.overlap_tests),
-                ("replaced", cs.replaced),
-                ("plane_splits", cs.plane_splits),
-            ],
-        );
+        let pieces = match ordered {
+            Some(pieces) => pieces,
+            None => {
+                let why = match orderer {
+                    Orderer::CoverageMap => format!(" ({why})"),
+                    _ => String::new(),
+                };
+                let told = format!("{skipped}{given_up}");
+                by_map(screen, overlapping, n, report, &mut stats, &told, &why)
+            }
+        };
+        visible.extend(pieces);
         stats.insert("chosen".into(), chosen.into());
         VisibleSet::exact(screen, visible, Vec::new(), stats, fallbacks)
     }
+}
+
+/// Orders `pieces` by Warnock's subdivision at object precision: large faces crossing many
+/// others (a soup), where the coverage map would cut each far piece by every nearer one before
+/// all of it vanished, and the subdivision drops it wherever one surrounding face hides it.
+fn by_subdivision(
+    screen: &ScreenScene,
+    pieces: &[Piece],
+    report: Option<Report>,
+    stats: &mut Stats,
+    skipped: &str,
+    why: &str,
+) -> Vec<Piece> {
+    let (visible, ws) = warnock_exact::visible_pieces(screen, pieces, report);
+    stage(
+        stats,
+        "order",
+        format!(
+            "{skipped}done by Warnock's subdivision at object precision for {} ({why}): \
+             {} settled by one surrounding face in front, {} hidden pieces dropped",
+            count(pieces.len(), "overlapping piece", "overlapping pieces"),
+            count(ws.settled, "area", "areas"),
+            ws.hidden
+        ),
+    );
+    stage(
+        stats,
+        "split",
+        format!(
+            "done only in {} (clipped exactly, Weiler-Atherton)",
+            count(ws.leaves, "small area", "small areas")
+        ),
+    );
+    put_counts(
+        stats,
+        [
+            ("areas", ws.areas),
+            ("areas_settled", ws.settled),
+            ("leaves_clipped", ws.leaves),
+        ],
+    );
+    visible
+}
+
+/// Orders `pieces` by Weiler–Atherton clipping, or gives up (`None`, nothing written to
+/// `stats`) past [`DEEPEST_CLIP_RECURSION`] levels.
+fn by_clipping(
+    screen: &ScreenScene,
+    pieces: Vec<Piece>,
+    report: Option<Report>,
+    stats: &mut Stats,
+    skipped: &str,
+    why: &str,
+) -> Option<Vec<Piece>> {
+    let n = pieces.len();
+    let (visible, ws) =
+        weiler_atherton::visible_pieces_within(screen, pieces, report, DEEPEST_CLIP_RECURSION)?;
+    stage(
+        stats,
+        "order",
+        format!(
+            "{skipped}done by Weiler-Atherton clipping for {} ({why}): {} clipped {} pieces, \
+             {} hidden parts dropped",
+            count(n, "overlapping piece", "overlapping pieces"),
+            count(ws.clip_polygons, "clip polygon", "clip polygons"),
+            ws.clipped,
+            ws.hidden
+        ),
+    );
+    stage(
+        stats,
+        "split",
+        if ws.recursions == 0 {
+            "skipped: no clipped part reaches in front of its clip polygon".into()
+        } else {
+            format!(
+                "done: {} where a part reaches in front of its clip polygon (cut by its plane, \
+                 {} deep at most)",
+                count(ws.recursions, "recursion", "recursions"),
+                count(ws.deepest, "level", "levels")
+            )
+        },
+    );
+    put_counts(
+        stats,
+        [
+            ("clip_polygons", ws.clip_polygons),
+            ("clipped", ws.clipped),
+            ("hidden_parts", ws.hidden),
+            ("recursions", ws.recursions),
+        ],
+    );
+    Some(visible)
+}
+
+/// Orders `pieces` (`n` of them before any given-up attempt) in the coverage map. `told`: what
+/// the order line starts with (meshes placed whole, a given-up attempt); `why`: the reason
+/// when the map was the choice.
+fn by_map(
+    screen: &ScreenScene,
+    pieces: Vec<Piece>,
+    n: usize,
+    report: Option<Report>,
+    stats: &mut Stats,
+    told: &str,
+    why: &str,
+) -> Vec<Piece> {
+    let coverage = coverage_of(screen, pieces, report);
+    let cs = coverage.stats.clone();
+    stage(
+        stats,
+        "order",
+        if n == 0 {
+            format!("{told}nothing left to order")
+        } else if cs.overlap_tests == 0 {
+            format!("{told}skipped: none of the other {n} pieces meets another on screen")
+        } else {
+            format!(
+                "{told}done by the coverage map where pieces meet on screen{why}: {} for {}, {} \
+                 cut back by nearer ones",
+                count(
+                    cs.overlap_tests,
+                    "exact overlap test",
+                    "exact overlap tests"
+                ),
+                count(n, "piece", "pieces"),
+                count(cs.replaced, "visible piece", "visible pieces")
+            )
+        },
+    );
+    stage(
+        stats,
+        "split",
+        if cs.plane_splits == 0 {
+            "skipped: no overlapping pair reaches in front of the other's plane where they \
+             overlap (pieces only clipped)"
+                .into()
+        } else {
+            format!(
+                "done: {} split where their planes meet",
+                count(cs.plane_splits, "overlapping pair", "overlapping pairs")
+            )
+        },
+    );
+    put_counts(
+        stats,
+        [
+            ("pieces", cs.inserted),
+            ("overlap_tests", cs.overlap_tests),
+            ("replaced", cs.replaced),
+            ("plane_splits", cs.plane_splits),
+        ],
+    );
+    coverage.into_pieces()
 }
 
 /// What orders the pieces that are not placed whole.
