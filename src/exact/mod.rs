@@ -389,6 +389,26 @@ impl Samples {
         ((self.height - 2 * j - 1) as i128) << XY_BITS
     }
 
+    /// Sample column i as the exact line `W·x - x_num = 0` (for [`predicates::line_side`]).
+    pub fn column_line(&self, i: i64) -> predicates::Line {
+        predicates::Line::Edge(Plane {
+            a: self.width as i128,
+            b: 0,
+            c: 0,
+            d: w256(-self.x_num(i)),
+        })
+    }
+
+    /// Sample row j as the exact line `H·y - y_num = 0`.
+    pub fn row_line(&self, j: i64) -> predicates::Line {
+        predicates::Line::Edge(Plane {
+            a: 0,
+            b: self.height as i128,
+            c: 0,
+            d: w256(-self.y_num(j)),
+        })
+    }
+
     /// Sample x in grid units (f64).
     #[inline]
     pub fn x(&self, i: i64) -> f64 {

@@ -27,8 +27,8 @@
 
 pub mod id_png;
 
-use crate::exact::predicates::{Line, Wide, line_side};
-use crate::exact::{Plane, Samples, w256};
+use crate::exact::Samples;
+use crate::exact::predicates::{Wide, line_side};
 use crate::pipeline::{DIFF_COVERAGE, DIFF_MISMATCH, diff_grey};
 use crate::project::ScreenScene;
 use crate::scene::Scene;
@@ -332,13 +332,7 @@ pub fn centre_truth(screen: &ScreenScene, visible: &VisibleSet) -> CentreTruths 
         let face = screen.polys[piece.poly as usize].id;
         for j in j0..j1 {
             let y = s.y(j);
-            // The sample row y = y_num/H as the line H·y - y_num = 0.
-            let row = Line::Edge(Plane {
-                a: 0,
-                b: h as i128,
-                c: 0,
-                d: w256(-s.y_num(j)),
-            });
+            let row = s.row_line(j);
             for i in i0..i1 {
                 let x = s.x(i);
                 // x and y are rounded once from exact quotients: within U·|x| (U·|y|).
@@ -346,15 +340,9 @@ pub fn centre_truth(screen: &ScreenScene, visible: &VisibleSet) -> CentreTruths 
                 let mut on = Vec::new();
                 let mut outside = false;
                 for (line, approx) in piece.lines.iter().zip(&piece.line_approx) {
-                    let side = approx.sign_at([x, y, e]).or_else(|| {
-                        let col = Line::Edge(Plane {
-                            a: w as i128,
-                            b: 0,
-                            c: 0,
-                            d: w256(-s.x_num(i)),
-                        });
-                        line_side([&col, &row], line)
-                    });
+                    let side = approx
+                        .sign_at([x, y, e])
+                        .or_else(|| line_side([&s.column_line(i), &row], line));
                     match side {
                         Some(Ordering::Less) => {
                             outside = true;

@@ -173,7 +173,7 @@ impl Strategy for Auto {
                     _ => String::new(),
                 };
                 let told = format!("{skipped}{given_up}");
-                by_map(screen, overlapping, n, report, &mut stats, &told, &why)
+                by_map(screen, overlapping, report, &mut stats, &told, &why)
             }
         };
         visible.extend(pieces);
@@ -275,18 +275,17 @@ fn by_clipping(
     Some(visible)
 }
 
-/// Orders `pieces` (`n` of them before any given-up attempt) in the coverage map. `told`: what
-/// the order line starts with (meshes placed whole, a given-up attempt); `why`: the reason
-/// when the map was the choice.
+/// Orders `pieces` in the coverage map. `told`: what the order line starts with (meshes placed
+/// whole, a given-up attempt); `why`: the reason when the map was the choice.
 fn by_map(
     screen: &ScreenScene,
     pieces: Vec<Piece>,
-    n: usize,
     report: Option<Report>,
     stats: &mut Stats,
     told: &str,
     why: &str,
 ) -> Vec<Piece> {
+    let n = pieces.len();
     let coverage = coverage_of(screen, pieces, report);
     let cs = coverage.stats.clone();
     stage(
@@ -584,7 +583,7 @@ fn whole_meshes(screen: &ScreenScene) -> WholeMeshes {
     // Twice the polygons' projected areas, summed per mesh, and the corners farthest in eight
     // directions: exact on the grid.
     let mut twice_areas = vec![0i128; meshes];
-    let mut extremes = vec![[None::<[i64; 2]>; 8]; meshes];
+    let mut extremes = vec![[None::<(i128, [i64; 2])>; 8]; meshes];
     for (k, p) in screen.polys.iter().enumerate() {
         let m = p.mesh as usize;
         let b = &mut boxes[m];
@@ -595,9 +594,9 @@ fn whole_meshes(screen: &ScreenScene) -> WholeMeshes {
             let d = &corners[(i + 1) % corners.len()];
             twice += c.x as i128 * d.y as i128 - d.x as i128 * c.y as i128;
             for (e, [u, v]) in extremes[m].iter_mut().zip(DIRECTIONS) {
-                let reach = |q: [i64; 2]| u as i128 * q[0] as i128 + v as i128 * q[1] as i128;
-                if e.is_none_or(|q| reach([c.x, c.y]) > reach(q)) {
-                    *e = Some([c.x, c.y]);
+                let reach = u as i128 * c.x as i128 + v as i128 * c.y as i128;
+                if e.is_none_or(|(r, _)| reach > r) {
+                    *e = Some((reach, [c.x, c.y]));
                 }
             }
         }
@@ -611,7 +610,7 @@ fn whole_meshes(screen: &ScreenScene) -> WholeMeshes {
     let may_tile = |m: usize| {
         let b = boxes[m];
         let box_area = (b[2] - b[0]) as i128 * (b[3] - b[1]) as i128;
-        let ring: Vec<[i64; 2]> = extremes[m].iter().flatten().copied().collect();
+        let ring: Vec<[i64; 2]> = extremes[m].iter().flatten().map(|&(_, q)| q).collect();
         let inscribed = (0..ring.len())
             .map(|i| {
                 let (c, d) = (ring[i], ring[(i + 1) % ring.len()]);

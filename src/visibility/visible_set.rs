@@ -33,9 +33,9 @@
 
 use super::coverage::subtract_all;
 use super::live::{Live, bounds};
+use crate::exact::Samples;
 use crate::exact::polygon::Piece;
-use crate::exact::predicates::{Line, line_side};
-use crate::exact::{Plane, Samples, w256};
+use crate::exact::predicates::line_side;
 use crate::project::ScreenScene;
 use std::cmp::Ordering;
 
@@ -142,24 +142,13 @@ impl VisibleSet {
             let j1 = ((r1 + 1.0).ceil() as i64).clamp(0, h);
             let id = screen.polys[piece.poly as usize].id;
             for j in j0..j1 {
-                // The sample row y = y_num/H as the line H·y - y_num = 0.
-                let row = Line::Edge(Plane {
-                    a: 0,
-                    b: h as i128,
-                    c: 0,
-                    d: w256(-s.y_num(j)),
-                });
+                let row = s.row_line(j);
                 for i in i0..i1 {
                     let k = (j * w + i) as usize;
                     if ids[k].is_some() {
                         continue;
                     }
-                    let col = Line::Edge(Plane {
-                        a: w as i128,
-                        b: 0,
-                        c: 0,
-                        d: w256(-s.x_num(i)),
-                    });
+                    let col = s.column_line(i);
                     let inside = piece
                         .lines
                         .iter()
