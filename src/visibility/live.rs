@@ -71,8 +71,15 @@ impl Live {
 
     /// The live pieces whose bounds overlap `b`, ascending.
     pub fn near(&mut self, b: &[f64; 4]) -> Vec<u32> {
+        let mut near = Vec::new();
+        self.near_into(b, &mut near);
+        near
+    }
+
+    /// [`Live::near`] into `near` (cleared first): a buffer reused across queries.
+    pub fn near_into(&mut self, b: &[f64; 4], near: &mut Vec<u32>) {
         self.query += 1;
-        let mut near: Vec<u32> = Vec::new();
+        near.clear();
         let (pieces, bounds, seen, query) =
             (&self.pieces, &self.bounds, &mut self.seen, self.query);
         self.grid.visit(
@@ -86,7 +93,6 @@ impl Live {
             },
         );
         near.sort_unstable();
-        near
     }
 
     /// The live pieces, ascending by index.

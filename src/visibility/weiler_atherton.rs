@@ -31,7 +31,6 @@ use super::{Strategy, opaque_then_layered};
 use crate::exact::polygon::{Piece, separated};
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
-use std::collections::HashMap;
 
 /// Weiler–Atherton. See the module docs.
 #[derive(Clone, Copy, Debug, Default)]
@@ -121,6 +120,56 @@ pub(crate) fn clip_order(screen: &ScreenScene, poly: u32) -> impl Ord {
     (nearest, std::cmp::Reverse(p.id), std::cmp::Reverse(poly))
 }
 
+/// The end of a chain of pieces.
+const NONE: u32 = u32::MAX;
+
+/// The pieces of each clip polygon (by rank), in the order they were added: one chain per rank
+/// through the pieces' indices in the [`Live`] list (indices are dense and never reused).
+struct Chains {
+    head: Vec<u32>,
+    tail: Vec<u32>,
+    /// Per piece index: the next piece of its rank.
+    next: Vec<u32>,
+    /// Per piece index: its rank.
+    rank: Vec<u32>,
+}
+
+impl Chains {
+    fn new(ranks: usize, pieces: usize) -> Chains {
+        Chains {
+            head: vec![NONE; ranks],
+            tail: vec![NONE; ranks],
+            next: Vec::with_capacity(pieces),
+            rank: Vec::with_capacity(pieces),
+        }
+    }
+
+    /// Appends piece `v`, the next index of the list, to rank `r`'s chain.
+    fn push(&mut self, r: u32, v: u32) {
+        debug_assert_eq!(v as usize, self.next.len(), "indices are dense");
+        self.next.push(NONE);
+        self.rank.push(r);
+        match self.tail[r as usize] {
+            NONE => self.head[r as usize] = v,
+            t => self.next[t as usize] = v,
+        }
+        self.tail[r as usize] = v;
+    }
+
+    /// Rank `r`'s pieces in order, leaving its chain empty.
+    fn drain(&mut self, r: u32) -> impl Iterator<Item = u32> + '_ {
+        let mut v = std::mem::replace(&mut self.head[r as usize], NONE);
+        self.tail[r as usize] = NONE;
+        std::iter::from_fn(move || {
+            (v != NONE).then(|| {
+                let here = v;
+                v = self.next[here as usize];
+                here
+            })
+        })
+    }
+}
+
 /// Writes the visible parts of `pieces` to `out`, taking `first`'s polygon as the first clip
 /// polygon when given. `done(k)`: k clip polygons of this level are done. `(level, deepest
 /// allowed)`: false, with `out` incomplete, when the recursion would go deeper.
@@ -137,20 +186,31 @@ fn resolve(
         return false;
     }
     st.deepest = st.deepest.max(level);
+    // Clip polygons in turn: ranks by `first`, then `clip_order`. Each rank's live pieces form
+    // a chain through `next` from `head[rank]`, so the region of a clip polygon is found without
+    // a map of polygons (outside parts join their piece's chain).
+    let mut order: Vec<(u32, usize)> = pieces.iter().map(|p| p.poly).zip(0..).collect();
+    order.sort_by_cached_key(|&(k, i)| (Some(k) != first, clip_order(screen, k), i));
+    let mut rank_of_piece = vec![0u32; pieces.len()];
+    let mut ranks = 0u32;
+    for (n, &(poly, i)) in order.iter().enumerate() {
+        if n > 0 && order[n - 1].0 != poly {
+            ranks += 1;
+        }
+        rank_of_piece[i] = ranks;
+    }
+    let ranks = if pieces.is_empty() { 0 } else { ranks + 1 };
     let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
     let mut list = Live::over(&boxes, boxes.len());
-    let mut of_poly: HashMap<u32, Vec<u32>> = HashMap::new();
-    for (p, b) in pieces.into_iter().zip(boxes) {
-        let poly = p.poly;
-        let v = list.add(p, b);
-        of_poly.entry(poly).or_default().push(v);
+    let mut chains = Chains::new(ranks as usize, pieces.len());
+    for ((p, b), r) in pieces.into_iter().zip(boxes).zip(rank_of_piece) {
+        chains.push(r, list.add(p, b));
     }
-    let mut polys: Vec<u32> = of_poly.keys().copied().collect();
-    polys.sort_by_cached_key(|&k| (Some(k) != first, clip_order(screen, k)));
-    for (n, c) in polys.into_iter().enumerate() {
-        done(n as u64);
-        let members = of_poly.remove(&c).expect("listed");
-        let region: Vec<Piece> = members.into_iter().filter_map(|v| list.take(v)).collect();
+    let mut near = Vec::new();
+    let mut outside = Vec::new();
+    for c in 0..ranks {
+        done(c as u64);
+        let region: Vec<Piece> = chains.drain(c).filter_map(|v| list.take(v)).collect();
         if region.is_empty() {
             continue;
         }
@@ -158,18 +218,19 @@ fn resolve(
         // The inside list, less what is hidden: parts in front of the clip polygon.
         let mut in_front: Vec<Piece> = Vec::new();
         for c_piece in &region {
-            for v in list.near(&bounds(c_piece)) {
+            list.near_into(&bounds(c_piece), &mut near);
+            for &v in &near {
                 if separated(list.get(v).expect("near is live"), c_piece) {
                     continue;
                 }
                 let p = list.take(v).expect("live");
                 st.clipped += 1;
-                let mut outside = Vec::new();
+                let r = chains.rank[v as usize];
+                debug_assert!(r > c, "a clip polygon's own pieces were taken");
                 let inside = clip(p, c_piece, &mut outside);
-                for o in outside {
-                    let (b, poly) = (bounds(&o), o.poly);
-                    let v = list.add(o, b);
-                    of_poly.get_mut(&poly).expect("not yet a clip").push(v);
+                for o in outside.drain(..) {
+                    let b = bounds(&o);
+                    chains.push(r, list.add(o, b));
                 }
                 let Some(q) = inside else { continue };
                 let (nearer, farther) = split_by_depth(screen, q, c_piece);
