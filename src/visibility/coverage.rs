@@ -21,9 +21,21 @@
 
 pub(crate) use super::live::bounds;
 use super::live::{Live, overlap};
+use super::occlusion::Occlusion;
 use crate::exact::polygon::{Piece, Split, separated};
+use crate::exact::twice_signed_area;
 use crate::project::ScreenScene;
 use std::cmp::Reverse;
+
+/// Per polygon of `screen`: is it seen from the back (clockwise on screen, or flat)?
+pub(crate) fn back_facing(screen: &ScreenScene) -> Vec<bool> {
+    (screen.polys.iter())
+        .map(|p| twice_signed_area(screen.corners(p)).is_le())
+        .collect()
+}
+
+/// Occlusion cells per piece (about).
+const OCCLUSION_CELLS_PER_PIECE: f64 = 1.0;
 
 /// The order of coplanar pieces, front first: larger face id, then later polygon.
 pub(crate) fn tie_key(screen: &ScreenScene, p: &Piece) -> (Reverse<u32>, Reverse<u32>) {
@@ -42,6 +54,8 @@ pub struct CoverageStats {
     /// Overlapping pairs split where their planes meet (each reaches in front of the other's
     /// plane there): the splits interpenetration and cyclic overlap need.
     pub plane_splits: usize,
+    /// Pieces proven hidden by the occlusion cells before any cut.
+    pub occluded: usize,
 }
 
 /// The exact visible set under construction. See the module docs.
@@ -49,17 +63,29 @@ pub struct Coverage<'a> {
     screen: &'a ScreenScene,
     /// Every piece ever made visible; removed once replaced.
     visible: Live,
+    /// Where the pieces seen from the front cover the screen, for the cheap proof that a piece
+    /// seen from the back is hidden; only when there are both.
+    occlusion: Option<Occlusion>,
+    /// Per polygon: seen from the back?
+    back_facing: Vec<bool>,
     /// Counters so far.
     pub stats: CoverageStats,
 }
 
 impl<'a> Coverage<'a> {
-    /// An empty map sized for `pieces` (only their bounds and number are read).
+    /// An empty map for `pieces`: the pieces of whole polygons that will all be inserted, in
+    /// some order and possibly cut further (their bounds size the grid; the polygons seen from
+    /// the front make the occlusion cells, which may prove a piece hidden before the pieces
+    /// that hide it are in).
     pub fn new<'p>(screen: &'a ScreenScene, pieces: impl IntoIterator<Item = &'p Piece>) -> Self {
-        let boxes: Vec<[f64; 4]> = pieces.into_iter().map(bounds).collect();
+        let pieces: Vec<&Piece> = pieces.into_iter().collect();
+        let boxes: Vec<[f64; 4]> = pieces.iter().map(|p| bounds(p)).collect();
+        let back_facing = back_facing(screen);
         Coverage {
             screen,
             visible: Live::over(&boxes, boxes.len()),
+            occlusion: Occlusion::of(screen, &pieces, &back_facing, OCCLUSION_CELLS_PER_PIECE),
+            back_facing,
             stats: CoverageStats::default(),
         }
     }
@@ -68,6 +94,8 @@ impl<'a> Coverage<'a> {
     /// over them (another exact strategy's visible set), as they are.
     pub fn of_visible(screen: &'a ScreenScene, pieces: Vec<Piece>) -> Self {
         let mut map = Coverage::new(screen, &pieces);
+        // Not whole polygons: no cover can be read from their outlines.
+        map.occlusion = None;
         for p in pieces {
             let b = bounds(&p);
             map.visible.add(p, b);
@@ -83,6 +111,9 @@ impl<'a> Coverage<'a> {
     /// Inserts a piece that nothing already inserted lies behind where they overlap.
     pub fn insert_behind(&mut self, piece: Piece) {
         self.stats.inserted += 1;
+        if self.occluded(&piece) {
+            return;
+        }
         for part in self.clipped_by_near(piece, |_, part, front, out| subtract(part, front, out)) {
             let b = bounds(&part);
             self.visible.add(part, b);
@@ -131,9 +162,22 @@ impl<'a> Coverage<'a> {
         parts
     }
 
+    /// Is `piece` proven hidden before any cut ([`Occlusion`])? Tried for pieces seen from the
+    /// back only: the cover is made of the others, so it cannot prove them hidden. Counts what
+    /// it hides.
+    fn occluded(&mut self, piece: &Piece) -> bool {
+        let hidden = self.back_facing[piece.poly as usize]
+            && (self.occlusion.as_ref()).is_some_and(|o| o.hides(self.screen, piece));
+        self.stats.occluded += hidden as usize;
+        hidden
+    }
+
     /// Inserts a piece in any order: see the module docs.
     pub fn insert(&mut self, piece: Piece) {
         self.stats.inserted += 1;
+        if self.occluded(&piece) {
+            return;
+        }
         let b = bounds(&piece);
         let mut queue = self.visible.near(&b);
         // Each part with its bounds, computed once: they cost crossings.

@@ -55,6 +55,7 @@ impl Strategy for CoverageMap {
             put("pieces", cs.inserted.into());
             put("replaced", cs.replaced.into());
             put("overlap_tests", cs.overlap_tests.into());
+            put("occluded", cs.occluded.into());
             (visible.pieces, Vec::new())
         };
         VisibleSet::exact(screen, pieces, layered, stats, fallbacks)

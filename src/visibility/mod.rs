@@ -27,6 +27,7 @@ pub mod coverage_map;
 pub(crate) mod grid;
 pub(crate) mod live;
 pub mod newell;
+pub(crate) mod occlusion;
 pub mod painter;
 pub mod tiling;
 pub mod visible_set;

@@ -1,0 +1,337 @@
+//! Occlusion cells: where the polygons seen from the front certainly cover the screen, and how
+//! far they lie there at most, so that a piece seen from the back that lies within such cells,
+//! wholly behind them, is proven hidden without being cut by anything (open meshes keep their
+//! back faces; most of them lie behind the front of the surface).
+//!
+//! The cover is the union U of the counter-clockwise (front-facing) polygons on screen. Its
+//! boundary lies on their contour: the sides that no other such polygon runs along the other
+//! way (two counter-clockwise polygons running along a side in opposite directions lie on its two
+//! sides, so the points inside it are inside U; a boundary point at a corner lies on a side that
+//! has U on one side only). The screen box is divided into cells with integer corners:
+//! - a cell met by no contour side (by its box, widened) holds no boundary point of U, so its
+//!   interior lies wholly inside U or wholly outside; it is inside when its centre, a grid point
+//!   inside the cell, lies in a front piece;
+//! - such a cell's `far` bounds the depth of every front piece meeting it over the cell (its
+//!   plane at the corners of the cell's overlap with the piece's bounds: a linear function), so
+//!   at every point of the cell the nearest surface is at most `far` away (a front piece covers
+//!   the point, and the nearest surface is no farther than it).
+//!
+//! A piece whose bounds lie within covered cells and whose proven nearest depth is strictly
+//! beyond each of their `far` is hidden everywhere ([`Occlusion::hides`]). Invariant: every
+//! decision is exact (integer cells and contour sides, exact point-in-piece signs) or a proven
+//! f64 bound; a piece the test cannot prove hidden goes the usual way.
+
+use super::live::bounds;
+use super::newell::depth_range;
+use crate::exact::polygon::Piece;
+use crate::exact::{i128_to_f64, i256_to_f64};
+use crate::project::ScreenScene;
+use std::cmp::Ordering;
+use std::collections::HashSet;
+
+/// The cells. See the module docs.
+pub(crate) struct Occlusion {
+    origin: [i64; 2],
+    /// Cell width and height in grid units (at least 1).
+    size: [i64; 2],
+    /// Cells per row and per column.
+    count: [i64; 2],
+    /// Per cell: the cover's far bound, or infinity where the cell is not known to be covered.
+    far: Vec<f64>,
+    /// Cells found covered.
+    pub covered: usize,
+}
+
+impl Occlusion {
+    /// The cells of `pieces` (the pieces of whole polygons), about `cells_per_piece` cells to a
+    /// piece; `back_facing[poly]` says which polygons are seen from the back (clockwise on
+    /// screen, or flat). `None` when there are none, or no others (nothing to try the test on,
+    /// or no cover).
+    pub fn of(
+        screen: &ScreenScene,
+        pieces: &[&Piece],
+        back_facing: &[bool],
+        cells_per_piece: f64,
+    ) -> Option<Occlusion> {
+        let ccw = |poly: u32| !back_facing[poly as usize];
+        let mut polys: Vec<u32> = pieces.iter().map(|p| p.poly).collect();
+        polys.sort_unstable();
+        polys.dedup();
+        let (front, back): (Vec<u32>, Vec<u32>) = polys.iter().partition(|&&k| ccw(k));
+        if back.is_empty() || front.is_empty() {
+            return None;
+        }
+        let mut all = [i64::MAX, i64::MAX, i64::MIN, i64::MIN];
+        for p in pieces {
+            let f = p.frame;
+            all = [
+                all[0].min(f[0]),
+                all[1].min(f[1]),
+                all[2].max(f[2]),
+                all[3].max(f[3]),
+            ];
+        }
+        let side = (pieces.len() as f64 * cells_per_piece)
+            .sqrt()
+            .clamp(1.0, 2048.0) as i64;
+        let span = |lo: i64, hi: i64| ((hi - lo).max(1) + side - 1) / side;
+        // At least 2 units: a cell's centre is inside it.
+        let size = [span(all[0], all[2]).max(2), span(all[1], all[3]).max(2)];
+        let count = [
+            ((all[2] - all[0]) / size[0] + 1).min(side),
+            ((all[3] - all[1]) / size[1] + 1).min(side),
+        ];
+        let mut occlusion = Occlusion {
+            origin: [all[0], all[1]],
+            size,
+            count,
+            far: vec![f64::NEG_INFINITY; (count[0] * count[1]) as usize],
+            covered: 0,
+        };
+        // Cells a contour side may meet are not covered (NaN marks them until the end).
+        let mut sides: HashSet<[i64; 4]> = HashSet::new();
+        for &k in &front {
+            let c = screen.corners(&screen.polys[k as usize]);
+            for i in 0..c.len() {
+                let (u, v) = (c[i], c[(i + 1) % c.len()]);
+                sides.insert([u.x, u.y, v.x, v.y]);
+            }
+        }
+        for &[ux, uy, vx, vy] in &sides {
+            if !sides.contains(&[vx, vy, ux, uy]) {
+                let b = [
+                    ux.min(vx) as f64,
+                    uy.min(vy) as f64,
+                    ux.max(vx) as f64,
+                    uy.max(vy) as f64,
+                ];
+                occlusion.for_cells(b, |far, _| *far = f64::NAN);
+            }
+        }
+        // The far bounds, and the centres inside a front piece.
+        let mut inside = vec![false; occlusion.far.len()];
+        for p in pieces.iter().filter(|p| ccw(p.poly)) {
+            let b = bounds(p);
+            let hi = max_corner_depth(screen, p);
+            let (origin, size) = (occlusion.origin, occlusion.size);
+            occlusion.for_cells(b, |far, [i, j]| {
+                if far.is_nan() {
+                    return;
+                }
+                let rect = [
+                    (origin[0] + i * size[0]) as f64,
+                    (origin[1] + j * size[1]) as f64,
+                    (origin[0] + (i + 1) * size[0]) as f64,
+                    (origin[1] + (j + 1) * size[1]) as f64,
+                ];
+                *far = far.max(farthest_within(p, rect, b, hi));
+                let k = (j * count[0] + i) as usize;
+                if !inside[k] {
+                    let (x, y) = (
+                        origin[0] + i * size[0] + size[0] / 2,
+                        origin[1] + j * size[1] + size[1] / 2,
+                    );
+                    inside[k] = p
+                        .lines
+                        .iter()
+                        .all(|l| l.sign_at_grid(x, y) != Ordering::Less);
+                }
+            });
+        }
+        for (far, inside) in occlusion.far.iter_mut().zip(inside) {
+            if inside && !far.is_nan() {
+                occlusion.covered += 1;
+            } else {
+                *far = f64::INFINITY;
+            }
+        }
+        Some(occlusion)
+    }
+
+    /// The cells (i0, i1, j0, j1, inclusive, unclamped) whose closed rectangles may meet the
+    /// box `b`: widened by a unit to integers that contain it, so the range is a superset.
+    fn cells_of(&self, b: [f64; 4]) -> [i64; 4] {
+        let (x0, y0) = (b[0].floor() as i64 - 1, b[1].floor() as i64 - 1);
+        let (x1, y1) = (b[2].ceil() as i64 + 1, b[3].ceil() as i64 + 1);
+        let cell = |v: i64, axis: usize| (v - self.origin[axis]).div_euclid(self.size[axis]);
+        [cell(x0, 0), cell(x1, 0), cell(y0, 1), cell(y1, 1)]
+    }
+
+    /// Calls `f(far, [i, j])` for every cell (within the grid) that the box `b` may meet.
+    fn for_cells(&mut self, b: [f64; 4], mut f: impl FnMut(&mut f64, [i64; 2])) {
+        let [i0, i1, j0, j1] = self.cells_of(b);
+        for j in j0.max(0)..=j1.min(self.count[1] - 1) {
+            for i in i0.max(0)..=i1.min(self.count[0] - 1) {
+                f(&mut self.far[(j * self.count[0] + i) as usize], [i, j]);
+            }
+        }
+    }
+
+    /// Is `piece` proven hidden behind the cover? (See the module docs.)
+    pub fn hides(&self, screen: &ScreenScene, piece: &Piece) -> bool {
+        let [i0, i1, j0, j1] = self.cells_of(bounds(piece));
+        if i0 < 0 || j0 < 0 || i1 >= self.count[0] || j1 >= self.count[1] {
+            return false;
+        }
+        let mut far = f64::NEG_INFINITY;
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                far = far.max(self.far[(j * self.count[0] + i) as usize]);
+                if far == f64::INFINITY {
+                    return false;
+                }
+            }
+        }
+        depth_range(screen, piece)[0] > far
+    }
+}
+
+/// The farthest corner depth of the piece's polygon: exact (grid depths are below 2^54).
+fn max_corner_depth(screen: &ScreenScene, piece: &Piece) -> f64 {
+    let corners = screen.corners(&screen.polys[piece.poly as usize]);
+    corners.iter().map(|c| c.z).max().unwrap_or(0) as f64
+}
+
+/// An upper bound of the depth of `piece` (bounds `b`) within the rectangle `rect` (grid units,
+/// x0 y0 x1 y1, exact in f64): its plane's largest value over the rectangle shared by `rect` and
+/// `b` widened to integers (a linear function: at a corner), never beyond `hi`, its polygon's
+/// farthest corner.
+///
+/// Bound: the corners are exact; with the plane's coefficients rounded once each,
+/// `|z - ẑ| <= 4·U·(|a·x| + |b·y| + |d|) / c + 2·U·|ẑ|` to first order; the code doubles each
+/// term and widens by 1 % for the rest (as [`depth_range`]).
+fn farthest_within(piece: &Piece, rect: [f64; 4], b: [f64; 4], hi: f64) -> f64 {
+    const U: f64 = f64::EPSILON / 2.0;
+    let (x0, y0, x1, y1) = (
+        rect[0].max(b[0].floor()),
+        rect[1].max(b[1].floor()),
+        rect[2].min(b[2].ceil()),
+        rect[3].min(b[3].ceil()),
+    );
+    let s = &piece.support;
+    let (a, b, c, d) = (
+        i128_to_f64(s.a),
+        i128_to_f64(s.b),
+        i128_to_f64(s.c),
+        i256_to_f64(s.d),
+    );
+    let mut far = f64::MIN;
+    for (x, y) in [(x0, y0), (x1, y0), (x1, y1), (x0, y1)] {
+        let (ax, by) = (a * x, b * y);
+        let z = -(ax + by + d) / c;
+        let err = (8.0 * U * (ax.abs() + by.abs() + d.abs()) / c + 4.0 * U * z.abs()) * 1.01;
+        far = far.max(z + err);
+    }
+    far.min(hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exact::{GridPoint, Plane};
+    use crate::project::ScreenPoly;
+    use crate::visibility::coverage::back_facing;
+    use crate::visibility::initial_pieces;
+
+    /// A screen scene of triangles given as (x, y, z) corners.
+    fn screen_of(tris: &[[[i64; 3]; 3]]) -> ScreenScene {
+        let mut s = ScreenScene {
+            width: 8,
+            height: 8,
+            ..ScreenScene::default()
+        };
+        for (k, t) in tris.iter().enumerate() {
+            let start = s.points.len() as u32;
+            let pts: Vec<GridPoint> = t.iter().map(|&[x, y, z]| GridPoint { x, y, z }).collect();
+            let plane = Plane::of_polygon(&pts).unwrap();
+            s.points.extend(&pts);
+            s.polys.push(ScreenPoly {
+                face: k as u32,
+                id: k as u32,
+                mesh: 0,
+                start,
+                len: 3,
+                plane,
+                front: true,
+            });
+        }
+        s
+    }
+
+    /// An 8 x 8 grid of counter-clockwise squares of side 8 at depth `z`, two triangles each,
+    /// less the square at (hole, hole) when given.
+    fn front_grid(z: i64, hole: Option<i64>) -> Vec<[[i64; 3]; 3]> {
+        let mut tris = Vec::new();
+        for j in 0..8 {
+            for i in 0..8 {
+                if hole == Some(i) && hole == Some(j) {
+                    continue;
+                }
+                let (x, y) = (8 * i, 8 * j);
+                tris.push([[x, y, z], [x + 8, y, z], [x + 8, y + 8, z]]);
+                tris.push([[x, y, z], [x + 8, y + 8, z], [x, y + 8, z]]);
+            }
+        }
+        tris
+    }
+
+    /// Is the last triangle (seen from the back: clockwise) proven hidden?
+    fn last_hidden(tris: &[[[i64; 3]; 3]]) -> bool {
+        let s = screen_of(tris);
+        let pieces = initial_pieces(&s);
+        let refs: Vec<&Piece> = pieces.iter().collect();
+        let back = back_facing(&s);
+        assert!(back[tris.len() - 1] && !back[0]);
+        let o = Occlusion::of(&s, &refs, &back, 1.0).expect("front and back");
+        o.hides(&s, pieces.last().unwrap())
+    }
+
+    /// A small clockwise triangle around (cx, cy) at depth z.
+    fn back_triangle(cx: i64, cy: i64, z: i64) -> [[i64; 3]; 3] {
+        [
+            [cx - 3, cy - 3, z],
+            [cx, cy + 3, z + 1],
+            [cx + 3, cy - 3, z],
+        ]
+    }
+
+    #[test]
+    fn a_back_face_behind_a_closed_front_sheet_is_proven_hidden() {
+        let mut tris = front_grid(1000, None);
+        tris.push(back_triangle(36, 28, 2000));
+        assert!(last_hidden(&tris));
+    }
+
+    #[test]
+    fn a_back_face_in_front_of_the_sheet_or_beyond_its_contour_or_behind_a_hole_is_not() {
+        // In front of the sheet.
+        let mut tris = front_grid(1000, None);
+        tris.push(back_triangle(36, 28, 500));
+        assert!(!last_hidden(&tris));
+        // Through the sheet: its far corner is behind, its near corners in front.
+        let mut tris = front_grid(1000, None);
+        tris.push([[33, 25, 900], [36, 31, 2000], [39, 25, 900]]);
+        assert!(!last_hidden(&tris));
+        // Behind, but reaching beyond the sheet's edge.
+        let mut tris = front_grid(1000, None);
+        tris.push(back_triangle(63, 28, 2000));
+        assert!(!last_hidden(&tris));
+        // Behind a hole in the sheet (the square at (4, 4) is missing).
+        let mut tris = front_grid(1000, Some(4));
+        tris.push(back_triangle(36, 36, 2000));
+        assert!(!last_hidden(&tris));
+        // Behind a sheet whose triangles share no side (each one's sides are all contour).
+        let mut tris: Vec<[[i64; 3]; 3]> = front_grid(1000, None)
+            .into_iter()
+            .map(|t| t.map(|[x, y, z]| [2 * x, 2 * y, z]))
+            .collect();
+        for t in tris.iter_mut() {
+            // Shrink every triangle towards its first corner: gaps everywhere.
+            let [a, b, c] = *t;
+            let mid = |p: [i64; 3]| [(a[0] + p[0] * 3) / 4, (a[1] + p[1] * 3) / 4, p[2]];
+            *t = [a, mid(b), mid(c)];
+        }
+        tris.push(back_triangle(72, 56, 2000));
+        assert!(!last_hidden(&tris));
+    }
+}
