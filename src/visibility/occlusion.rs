@@ -99,13 +99,7 @@ impl Occlusion {
         }
         for &[ux, uy, vx, vy] in &sides {
             if !sides.contains(&[vx, vy, ux, uy]) {
-                let b = [
-                    ux.min(vx) as f64,
-                    uy.min(vy) as f64,
-                    ux.max(vx) as f64,
-                    uy.max(vy) as f64,
-                ];
-                occlusion.for_cells(b, |far, _| *far = f64::NAN);
+                occlusion.mark_segment([ux, uy], [vx, vy]);
             }
         }
         // The far bounds, and the centres inside a front piece.
@@ -155,6 +149,46 @@ impl Occlusion {
         let (x1, y1) = (b[2].ceil() as i64 + 1, b[3].ceil() as i64 + 1);
         let cell = |v: i64, axis: usize| (v - self.origin[axis]).div_euclid(self.size[axis]);
         [cell(x0, 0), cell(x1, 0), cell(y0, 1), cell(y1, 1)]
+    }
+
+    /// Marks (NaN) every cell that the segment from `u` to `v` (grid points) may meet: column by
+    /// column of cells, the rows between the segment's lowest and highest y over the column,
+    /// rounded outwards exactly (integer division) and widened by a unit, as [`Self::cells_of`]
+    /// widens boxes. A long slanted side so marks the cells along it, not its whole box.
+    fn mark_segment(&mut self, u: [i64; 2], v: [i64; 2]) {
+        let (u, v) = if u[0] <= v[0] { (u, v) } else { (v, u) };
+        let [i0, i1, _, _] = self.cells_of([u[0] as f64, 0.0, v[0] as f64, 0.0]);
+        let (dx, dy) = ((v[0] - u[0]) as i128, (v[1] - u[1]) as i128);
+        for i in i0.max(0)..=i1.min(self.count[0] - 1) {
+            // The segment's x-range within the column (closed), then y at its two ends.
+            let cx0 = (self.origin[0] + i * self.size[0]).max(u[0]);
+            let cx1 = (self.origin[0] + (i + 1) * self.size[0]).min(v[0]);
+            let (ylo, yhi) = if dx == 0 {
+                (u[1].min(v[1]), u[1].max(v[1]))
+            } else if cx0 > cx1 {
+                continue;
+            } else {
+                // y(x) = u.y + (x - u.x)·dy / dx, exactly bracketed by floor and ceil.
+                let at = |x: i64| {
+                    let num = (x - u[0]) as i128 * dy;
+                    let floor = num.div_euclid(dx);
+                    let ceil = floor + (num.rem_euclid(dx) != 0) as i128;
+                    (u[1] as i128 + floor, u[1] as i128 + ceil)
+                };
+                let (a, b) = (at(cx0), at(cx1));
+                (a.0.min(b.0) as i64, a.1.max(b.1) as i64)
+            };
+            let col = [
+                (self.origin[0] + i * self.size[0]) as f64,
+                ylo as f64,
+                (self.origin[0] + i * self.size[0]) as f64,
+                yhi as f64,
+            ];
+            let [_, _, j0, j1] = self.cells_of(col);
+            for j in j0.max(0)..=j1.min(self.count[1] - 1) {
+                self.far[(j * self.count[0] + i) as usize] = f64::NAN;
+            }
+        }
     }
 
     /// Calls `f(far, [i, j])` for every cell (within the grid) that the box `b` may meet.
@@ -300,6 +334,23 @@ mod tests {
         let mut tris = front_grid(1000, None);
         tris.push(back_triangle(36, 28, 2000));
         assert!(last_hidden(&tris));
+    }
+
+    #[test]
+    fn a_long_slanted_contour_side_leaves_the_cells_away_from_it_covered() {
+        // The grid's lower right half: below the diagonal from (0, 0) to (64, 64), which the
+        // diagonal squares' lower triangles make one long slanted contour of eight sides.
+        let mut tris: Vec<[[i64; 3]; 3]> = front_grid(1000, None)
+            .into_iter()
+            .filter(|t| t.iter().all(|&[x, y, _]| x >= y))
+            .collect();
+        // Its box meets the diagonal's, but not the cells along the diagonal.
+        tris.push(back_triangle(44, 16, 2000));
+        assert!(last_hidden(&tris));
+        // Across the diagonal: not covered.
+        let last = tris.len() - 1;
+        tris[last] = back_triangle(30, 30, 2000);
+        assert!(!last_hidden(&tris));
     }
 
     #[test]
