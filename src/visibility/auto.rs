@@ -26,8 +26,10 @@
 //! is the coverage map's whatever ran (every exact strategy's is), so the drawing's bytes are
 //! the same.
 
+use super::coverage::back_facing;
 use super::coverage_map::coverage_of;
 use super::grid::sweep_overlapping;
+use super::occlusion::drop_hidden;
 use super::tiling::tiles_convex_region_once;
 use super::visible_set::{Stats, VisibleSet, put_counts};
 use super::{CoverageMap, Strategy, initial_pieces, translucent_polygons};
@@ -105,6 +107,26 @@ impl Strategy for Auto {
                 (Vec::new(), pieces)
             };
         let placed = visible.len();
+        // Pieces seen from the back that the front proves hidden need no orderer at all.
+        let occluded = drop_hidden(screen, &mut overlapping, &back_facing(screen));
+        if occluded > 0 {
+            let hidden = format!(
+                "{} proven hidden behind the front before any cut (occlusion cells)",
+                count(
+                    occluded,
+                    "piece seen from the back",
+                    "pieces seen from the back"
+                )
+            );
+            let culled = match ps.culled_meshes {
+                0 => format!("done: {hidden}; no closed mesh of certain orientation to cull"),
+                _ => format!(
+                    "{}; {hidden}",
+                    stats["stage_cull"].as_str().unwrap_or_default()
+                ),
+            };
+            stage(&mut stats, "cull", culled);
+        }
         let n = overlapping.len();
         let crowding = Crowding::of(screen, &overlapping);
         crowding.put(&mut stats);
@@ -116,6 +138,7 @@ impl Strategy for Auto {
                 ("meshes_apart", whole.apart),
                 ("meshes_placed_whole", whole_meshes),
                 ("pieces_placed_whole", placed),
+                ("occluded", occluded),
             ],
         );
         let skipped = match whole_meshes {
@@ -173,7 +196,17 @@ impl Strategy for Auto {
                     _ => String::new(),
                 };
                 let told = format!("{skipped}{given_up}");
-                by_map(screen, overlapping, report, &mut stats, &told, &why)
+                // Given-up clipping made the pieces again: the map's own cells drop them.
+                let occlusion = !given_up.is_empty();
+                by_map(
+                    screen,
+                    overlapping,
+                    occlusion,
+                    report,
+                    &mut stats,
+                    &told,
+                    &why,
+                )
             }
         };
         visible.extend(pieces);
@@ -280,13 +313,14 @@ fn by_clipping(
 fn by_map(
     screen: &ScreenScene,
     pieces: Vec<Piece>,
+    occlusion: bool,
     report: Option<Report>,
     stats: &mut Stats,
     told: &str,
     why: &str,
 ) -> Vec<Piece> {
     let n = pieces.len();
-    let coverage = coverage_of(screen, pieces, report);
+    let coverage = coverage_of(screen, pieces, report, occlusion);
     let cs = coverage.stats.clone();
     stage(
         stats,

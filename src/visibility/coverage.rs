@@ -21,7 +21,7 @@
 
 pub(crate) use super::live::bounds;
 use super::live::{Live, overlap};
-use super::occlusion::Occlusion;
+use super::occlusion::{CELLS_PER_PIECE, Occlusion};
 use crate::exact::polygon::{Piece, Split, separated};
 use crate::exact::twice_signed_area;
 use crate::project::ScreenScene;
@@ -33,9 +33,6 @@ pub(crate) fn back_facing(screen: &ScreenScene) -> Vec<bool> {
         .map(|p| twice_signed_area(screen.corners(p)).is_le())
         .collect()
 }
-
-/// Occlusion cells per piece (about).
-const OCCLUSION_CELLS_PER_PIECE: f64 = 1.0;
 
 /// The order of coplanar pieces, front first: larger face id, then later polygon.
 pub(crate) fn tie_key(screen: &ScreenScene, p: &Piece) -> (Reverse<u32>, Reverse<u32>) {
@@ -78,13 +75,25 @@ impl<'a> Coverage<'a> {
     /// the front make the occlusion cells, which may prove a piece hidden before the pieces
     /// that hide it are in).
     pub fn new<'p>(screen: &'a ScreenScene, pieces: impl IntoIterator<Item = &'p Piece>) -> Self {
+        Coverage::with_occlusion(screen, pieces, true)
+    }
+
+    /// [`Coverage::new`], with occlusion cells only when `occlusion` (not worth making again
+    /// for pieces that [`super::occlusion::drop_hidden`] has already been through).
+    pub(crate) fn with_occlusion<'p>(
+        screen: &'a ScreenScene,
+        pieces: impl IntoIterator<Item = &'p Piece>,
+        occlusion: bool,
+    ) -> Self {
         let pieces: Vec<&Piece> = pieces.into_iter().collect();
         let boxes: Vec<[f64; 4]> = pieces.iter().map(|p| bounds(p)).collect();
         let back_facing = back_facing(screen);
         Coverage {
             screen,
             visible: Live::over(&boxes, boxes.len()),
-            occlusion: Occlusion::of(screen, &pieces, &back_facing, OCCLUSION_CELLS_PER_PIECE),
+            occlusion: occlusion
+                .then(|| Occlusion::of(screen, &pieces, &back_facing, CELLS_PER_PIECE))
+                .flatten(),
             back_facing,
             stats: CoverageStats::default(),
         }

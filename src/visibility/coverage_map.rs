@@ -42,7 +42,7 @@ impl Strategy for CoverageMap {
             let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
                 .into_iter()
                 .partition(|p| translucent(p.poly));
-            let mut coverage = coverage_of(screen, opaque, report);
+            let mut coverage = coverage_of(screen, opaque, report, true);
             let (layered, bsp) = translucent_layer(screen, &mut coverage, see_through, report);
             put("pieces", (coverage.stats.inserted + bsp.pieces).into());
             put("fragments", bsp.fragments.into());
@@ -74,16 +74,18 @@ pub fn visible_set_with_progress(
     screen: &ScreenScene,
     report: Option<Report>,
 ) -> (VisibleSet, CoverageStats) {
-    let coverage = coverage_of(screen, initial_pieces(screen), report);
+    let coverage = coverage_of(screen, initial_pieces(screen), report, true);
     let stats = coverage.stats.clone();
     (VisibleSet::of_pieces(coverage.into_pieces()), stats)
 }
 
-/// The coverage map of `pieces`, inserted nearest corner first, reporting stage "visible set".
+/// The coverage map of `pieces`, inserted nearest corner first, reporting stage "visible set";
+/// with occlusion cells when `occlusion` ([`Coverage::with_occlusion`]).
 pub(crate) fn coverage_of<'a>(
     screen: &'a ScreenScene,
     mut pieces: Vec<Piece>,
     report: Option<Report>,
+    occlusion: bool,
 ) -> Coverage<'a> {
     let near: Vec<i64> = screen
         .polys
@@ -91,7 +93,7 @@ pub(crate) fn coverage_of<'a>(
         .map(|p| screen.corners(p).iter().map(|c| c.z).min().unwrap_or(0))
         .collect();
     pieces.sort_by_key(|p| (near[p.poly as usize], tie_key(screen, p)));
-    let mut coverage = Coverage::new(screen, &pieces);
+    let mut coverage = Coverage::with_occlusion(screen, &pieces, occlusion);
     let mut ticker = Ticker::new(report, "visible set", pieces.len() as u64);
     for (i, p) in pieces.into_iter().enumerate() {
         coverage.insert(p);

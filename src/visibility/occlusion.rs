@@ -29,6 +29,22 @@ use crate::project::ScreenScene;
 use std::cmp::Ordering;
 use std::collections::HashSet;
 
+/// Occlusion cells per piece (about): finer cells follow the contour more closely but cost more
+/// to fill; one per piece measured best on the bunny and the teapot (0.25 and 4 did worse).
+pub(crate) const CELLS_PER_PIECE: f64 = 1.0;
+
+/// Removes from `pieces` (the pieces of whole polygons) those seen from the back that the
+/// occlusion cells prove hidden; returns how many. What is left has the same visible set.
+pub(crate) fn drop_hidden(screen: &ScreenScene, pieces: &mut Vec<Piece>, back: &[bool]) -> usize {
+    let refs: Vec<&Piece> = pieces.iter().collect();
+    let Some(cells) = Occlusion::of(screen, &refs, back, CELLS_PER_PIECE) else {
+        return 0;
+    };
+    let before = pieces.len();
+    pieces.retain(|p| !(back[p.poly as usize] && cells.hides(screen, p)));
+    before - pieces.len()
+}
+
 /// The cells. See the module docs.
 pub(crate) struct Occlusion {
     origin: [i64; 2],
