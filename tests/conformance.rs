@@ -7,10 +7,12 @@
 //! face); an approximate one is only run. Each comparison asserts that it compared covered
 //! interior pixels, so a scene that renders empty cannot pass.
 
+use glam::{DMat4, DVec3};
 use sightline::camera::{Camera, NamedView};
 use sightline::methods::{Engine, METHODS, method};
 use sightline::pipeline::{compare_ids, prepare};
 use sightline::project::CullMode;
+use sightline::scene::SceneBuilder;
 use sightline::visibility::{CoverageMap, Strategy};
 use std::path::PathBuf;
 
@@ -109,6 +111,62 @@ fn every_exact_strategy_has_the_coverage_maps_visible_set_on_every_fixture() {
         }
     }
     assert_eq!(compared, fixtures().len() * 2 * 2 * strategies.len());
+}
+
+/// A square of side 0.4 at `centre` facing `normal`, in a mesh of its own (open: never culled).
+fn add_square(b: &mut SceneBuilder, centre: DVec3, normal: DVec3) {
+    let u = normal.any_orthonormal_vector() * 0.2;
+    let v = normal.cross(u);
+    // u x v = normal: counter-clockwise seen from where the normal points.
+    let corners = [
+        centre - u - v,
+        centre + u - v,
+        centre + u + v,
+        centre - u + v,
+    ];
+    b.begin_mesh("square");
+    let m = b.default_material();
+    let ids: Vec<u32> = corners.iter().map(|&p| b.add_vertex(p)).collect();
+    b.add_face(&ids, m);
+}
+
+/// The occlusion cells drop pieces seen from the back before any cut, and only those behind the
+/// front: from three views, a closed sphere (its back faces culled; its front the cover) with two
+/// squares turned away from the eye, one inside it (dropped) and one in front of it (within
+/// covered cells, but kept by the depth test: it is visible). The coverage map's visible set is
+/// that of Weiler–Atherton, Newell and Warnock's subdivision, which make no cells of their own.
+#[test]
+fn occlusion_cells_drop_back_pieces_without_changing_the_visible_set() {
+    for view in [NamedView::Iso, NamedView::Front, NamedView::Top] {
+        let (towards_eye, _) = view.direction_and_up();
+        let mut b = SceneBuilder::new("sphere and squares");
+        b.begin_mesh("sphere");
+        let m = b.default_material();
+        sightline::scene::primitives::add_sphere(&mut b, &DMat4::IDENTITY, 1.0, 32, 16, m);
+        add_square(&mut b, DVec3::ZERO, -towards_eye);
+        add_square(&mut b, 1.3 * towards_eye, -towards_eye);
+        let scene = b.finish().unwrap();
+        let camera = Camera::fit(view, scene.bounds().unwrap(), false, 40.0, 160, 120);
+        let screen = prepare(&scene, &camera, CullMode::Auto).screen;
+        let want = CoverageMap.visible_set(&screen, &|_| false, None);
+        let occluded = want.stats["occluded"].as_u64().unwrap();
+        assert_eq!(
+            occluded, 1,
+            "{view:?}: the square inside the sphere, and only it"
+        );
+        for name in ["weiler-atherton", "newell", "warnock-exact"] {
+            let Engine::Object(strategy) = method(name).unwrap().engine else {
+                panic!("{name} is an object-space strategy");
+            };
+            let got = strategy.visible_set(&screen, &|_| false, None);
+            let diff = want.symmetric_difference(&got);
+            assert!(
+                diff.is_empty(),
+                "{name} ({view:?}): {} parts differ",
+                diff.len()
+            );
+        }
+    }
 }
 
 /// The approximate painter is measured, not trusted: on the cyclic bars it is wrong, and the

@@ -14,10 +14,10 @@ use sightline::camera::{Camera, NamedView};
 use sightline::methods::{Engine, METHODS};
 use sightline::pipeline::prepare;
 use sightline::project::CullMode;
+use sightline::scene::Scene;
 use sightline::scene::primitives::{
-    interpenetrating_tori, random_triangle_soup, sphere_mesh, sphere_scene,
+    holed_sphere_scene, interpenetrating_tori, random_triangle_soup, sphere_scene,
 };
-use sightline::scene::{Scene, SceneBuilder};
 
 const RECORD: &str = "tests/golden/work_counts.json";
 
@@ -32,31 +32,13 @@ const SAVINGS: &[&str] = &[
 /// Counters that describe the scene, not the work: not guarded.
 const SCENE: &[&str] = &["polygons", "meshes_on_screen"];
 
-/// A UV sphere with every fourth face of each band left out: an open mesh full of holes, so
-/// its back faces are kept and seen through the holes.
-fn open_sphere() -> Scene {
-    let t = sphere_mesh(1.0, 48, 24);
-    let mut b = SceneBuilder::new("open sphere");
-    b.begin_mesh("open sphere");
-    let m = b.default_material();
-    for p in &t.positions {
-        b.add_vertex(*p);
-    }
-    for (k, f) in t.faces().enumerate() {
-        if k % 4 != 1 {
-            b.add_face(f, m);
-        }
-    }
-    b.finish().expect("faces")
-}
-
 /// The reference scenes, each with its camera (256 x 256).
 fn scenes() -> Vec<(&'static str, Scene, Camera)> {
     let fit = |s: &Scene, view| Camera::fit(view, s.bounds().unwrap(), false, 40.0, 256, 256);
     let mut out = Vec::new();
     let sphere = sphere_scene(4_000);
     out.push(("sphere_4000", fit(&sphere, NamedView::Iso), sphere));
-    let open = open_sphere();
+    let open = holed_sphere_scene(48, 24);
     out.push(("open_sphere", fit(&open, NamedView::Iso), open));
     let tori = interpenetrating_tori(32, 12);
     out.push(("interpenetrating_tori", fit(&tori, NamedView::Iso), tori));

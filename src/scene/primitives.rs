@@ -418,6 +418,25 @@ pub fn sphere_scene(triangles: usize) -> Scene {
     b.finish().unwrap_or_default()
 }
 
+/// A UV sphere of unit radius (`segments` x `rings`) with every fourth face left out: an open
+/// mesh full of holes, so its back faces are kept (no closed mesh to cull) and are seen through
+/// the holes. One mesh, default material; quads stay quads.
+pub fn holed_sphere_scene(segments: usize, rings: usize) -> Scene {
+    let t = sphere_mesh(1.0, segments, rings);
+    let mut b = SceneBuilder::new(&format!("holed_sphere_scene({segments}, {rings})"));
+    b.begin_mesh("holed sphere");
+    let m = b.default_material();
+    for p in &t.positions {
+        b.add_vertex(*p);
+    }
+    for (k, f) in t.faces().enumerate() {
+        if k % 4 != 1 {
+            b.add_face(f, m);
+        }
+    }
+    b.finish().unwrap_or_default()
+}
+
 /// SplitMix64: a tiny deterministic generator, enough for benchmark geometry.
 struct SplitMix64(u64);
 
