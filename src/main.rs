@@ -799,15 +799,22 @@ fn render(a: RenderArgs) -> sightline::Result<()> {
             png::write_depth16(w, camera.width, camera.height, depth)
         })?;
     }
+    let t3 = Instant::now();
     write_with(&a.output, |w| rendered.write(w))?;
+    let t_write = t3.elapsed();
     if a.stats {
         let s = &prepared.screen.stats;
+        let stages: Vec<String> = (rendered.stage_seconds.iter())
+            .map(|(name, t)| format!("{name} {t:.3}s"))
+            .collect();
         eprintln!(
-            "load {:.3}s, project+cull {:.3}s, {} {:.3}s",
+            "load {:.3}s, project+cull {:.3}s, {} {:.3}s ({}), write {:.3}s",
             t_load.as_secs_f64(),
             t_project.as_secs_f64(),
             method.name,
-            t_method.as_secs_f64()
+            t_method.as_secs_f64(),
+            stages.join(", "),
+            t_write.as_secs_f64()
         );
         eprintln!(
             "faces {} -> on screen {} (frustum culled {}, back faces culled {}, clipped {}, degenerate after snap {}, split off their plane by the snap {})",

@@ -26,6 +26,7 @@ use crate::scene::{CameraLights, Scene, SceneLights};
 use crate::visibility::VisibleSet;
 use std::io::{self, Write};
 use std::path::Path;
+use std::time::Instant;
 
 /// What is drawn behind the scene.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -328,6 +329,9 @@ pub struct Rendered {
     /// What the user should know, in the order it was found (an empty view, textures not
     /// applied or not read).
     pub warnings: Vec<String>,
+    /// Seconds spent in each stage, in order: "visible set" or "image", then for drawings
+    /// "regions" (merge, seams, canonical form) and "document" (the SVG or JSON text).
+    pub stage_seconds: Vec<(&'static str, f64)>,
 }
 
 /// The bytes of a render, or what streams them.
@@ -393,7 +397,17 @@ pub fn render(
         blend: fill == Fill::Shade,
         depth: options.depth,
     };
+    let mut clock = Instant::now();
+    let mut stage_seconds = Vec::new();
+    let mut lap = |name: &'static str| {
+        stage_seconds.push((name, clock.elapsed().as_secs_f64()));
+        clock = Instant::now();
+    };
     let computed = compute(method, screen, &raster_options, report);
+    lap(match computed {
+        Computed::Raster(_) => "image",
+        Computed::Visible(_) => "visible set",
+    });
     let detail = computed.detail();
     let (body, depth) = match computed {
         Computed::Raster(raster) => {
@@ -440,6 +454,7 @@ pub fn render(
             if drawing.background.is_none() {
                 drawing.background = background.map(|c| c.map(|v| v as f64 / 255.0));
             }
+            lap("regions");
             let body = match options.format {
                 Output::Svg => {
                     let svg_options = svg::SvgOptions {
@@ -461,6 +476,9 @@ pub fn render(
                 }
                 Output::Png => Body::Drawing(drawing),
             };
+            if options.format != Output::Png {
+                lap("document");
+            }
             (body, None)
         }
     };
@@ -471,6 +489,7 @@ pub fn render(
         depth,
         detail,
         warnings,
+        stage_seconds,
     })
 }
 
