@@ -24,6 +24,7 @@ pub mod bsp;
 pub mod bsp_tree;
 pub mod coverage;
 pub mod coverage_map;
+pub mod depth;
 pub(crate) mod grid;
 pub(crate) mod live;
 pub mod newell;
@@ -150,6 +151,32 @@ pub fn pixel_ring(samples: &Samples, corners: &[GridPoint]) -> Vec<[f64; 2]> {
         .iter()
         .map(|p| [samples.col_of(p.x as f64), samples.row_of(p.y as f64)])
         .collect()
+}
+
+/// A screen scene (8 x 8 pixels) of the given polygons' grid corners, each its own face, all in
+/// mesh 0: the unit tests' scenes.
+#[cfg(test)]
+pub(crate) fn screen_of_polygons(polys: impl IntoIterator<Item = Vec<GridPoint>>) -> ScreenScene {
+    let mut s = ScreenScene {
+        width: 8,
+        height: 8,
+        ..ScreenScene::default()
+    };
+    for (k, pts) in polys.into_iter().enumerate() {
+        let start = s.points.len() as u32;
+        let plane = crate::exact::Plane::of_polygon(&pts).expect("a plane");
+        s.points.extend(&pts);
+        s.polys.push(crate::project::ScreenPoly {
+            face: k as u32,
+            id: k as u32,
+            mesh: 0,
+            start,
+            len: pts.len() as u32,
+            plane,
+            front: true,
+        });
+    }
+    s
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@
 //!
 //! Invariant of the list: wherever two pieces overlap on screen, the later one is nearer (for
 //! coplanar faces, the later one wins the z-buffer's tie: larger face id, then later polygon).
-//! Tests 1 and 2 use bounds proven to contain the pieces ([`depth_range`], [`Piece::bounds`]):
+//! Tests 1 and 2 use bounds proven to contain the pieces ([`depth::range`], [`Piece::bounds`]):
 //! they only ever skip a pair that certainly passes; 3, 4 and 5 are exact.
 //!
 //! The visible set is the list painted exactly, back to front ([`Canvas`]): each opaque piece,
@@ -31,12 +31,12 @@
 //! of the list, less what later opaque pieces cover.
 
 use super::coverage::{subtract, subtract_all, tie_key};
+use super::depth;
 use super::live::{Live, bounds, overlap};
 use super::visible_set::{Fragment, Stats, VisibleSet, put_counts};
 use super::{Strategy, initial_pieces};
 use crate::exact::polygon::{Piece, Split, separated};
 use crate::exact::predicates::fallback_count;
-use crate::exact::{i128_to_f64, i256_to_f64};
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 
@@ -97,42 +97,6 @@ impl Strategy for Newell {
     }
 }
 
-/// The depth range [near, far] (grid z, larger is farther) that certainly contains the piece:
-/// each vertex's depth on the support plane in f64 with a bound on its error, within the
-/// polygon's exact corner range (the piece lies in the polygon).
-///
-/// Bound: with the plane's coefficients rounded once each and the vertex within `e` of its f64
-/// point, `|z - ẑ| <= ((|a|+|b|)·e + 4·U·(|a·x| + |b·y| + |d|)) / c + 2·U·|ẑ|` to first order;
-/// the code doubles each term and widens by 1 % for the rest.
-pub fn depth_range(screen: &ScreenScene, p: &Piece) -> [f64; 2] {
-    const U: f64 = f64::EPSILON / 2.0;
-    let corners = screen.corners(&screen.polys[p.poly as usize]);
-    // Grid depths are below 2^54: exact in f64.
-    let lo = corners.iter().map(|c| c.z).min().unwrap_or(0) as f64;
-    let hi = corners.iter().map(|c| c.z).max().unwrap_or(0) as f64;
-    let s = &p.support;
-    let (a, b, c, d) = (
-        i128_to_f64(s.a),
-        i128_to_f64(s.b),
-        i128_to_f64(s.c),
-        i256_to_f64(s.d),
-    );
-    let (mut near, mut far) = (f64::MAX, f64::MIN);
-    for &[x, y, e] in &p.points {
-        if !e.is_finite() {
-            return [lo, hi];
-        }
-        let (ax, by) = (a * x, b * y);
-        let z = -(ax + by + d) / c;
-        let err = ((a.abs() + b.abs()) * e + 8.0 * U * (ax.abs() + by.abs() + d.abs())) / c
-            + 4.0 * U * z.abs();
-        let err = err * 1.01;
-        near = near.min(z - err);
-        far = far.max(z + err);
-    }
-    [near.max(lo), far.min(hi)]
-}
-
 /// Piece `i` of the list (not yet painted or cut).
 fn item(items: &[Option<Item>], i: usize) -> &Item {
     items[i].as_ref().expect("in list")
@@ -141,7 +105,7 @@ fn item(items: &[Option<Item>], i: usize) -> &Item {
 /// A piece in the list with what the cheap tests read.
 struct Item {
     piece: Piece,
-    /// [`depth_range`].
+    /// [`depth::range`].
     depth: [f64; 2],
     /// [`bounds`].
     bounds: [f64; 4],
@@ -150,7 +114,7 @@ struct Item {
 impl Item {
     fn new(screen: &ScreenScene, piece: Piece) -> Item {
         Item {
-            depth: depth_range(screen, &piece),
+            depth: depth::range(screen, &piece),
             bounds: bounds(&piece),
             piece,
         }

@@ -19,12 +19,11 @@
 //! A piece whose bounds lie within covered cells and whose proven nearest depth is strictly
 //! beyond each of their `far` is hidden everywhere ([`Occlusion::hides`]). Invariant: every
 //! decision is exact (integer cells and contour sides, exact point-in-piece signs) or a proven
-//! f64 bound; a piece the test cannot prove hidden goes the usual way.
+//! f64 bound ([`depth`]); a piece the test cannot prove hidden goes the usual way.
 
+use super::depth;
 use super::live::bounds;
-use super::newell::depth_range;
 use crate::exact::polygon::Piece;
-use crate::exact::{i128_to_f64, i256_to_f64};
 use crate::project::ScreenScene;
 use std::cmp::Ordering;
 use std::collections::HashSet;
@@ -122,7 +121,6 @@ impl Occlusion {
         let mut inside = vec![false; occlusion.far.len()];
         for p in pieces.iter().filter(|p| ccw(p.poly)) {
             let b = bounds(p);
-            let hi = max_corner_depth(screen, p);
             let (origin, size) = (occlusion.origin, occlusion.size);
             occlusion.for_cells(b, |far, [i, j]| {
                 if far.is_nan() {
@@ -134,7 +132,7 @@ impl Occlusion {
                     (origin[0] + (i + 1) * size[0]) as f64,
                     (origin[1] + (j + 1) * size[1]) as f64,
                 ];
-                *far = far.max(farthest_within(p, rect, b, hi));
+                *far = far.max(depth::farthest_within(screen, p, rect, b));
                 let k = (j * count[0] + i) as usize;
                 if !inside[k] {
                     let (x, y) = (
@@ -232,80 +230,22 @@ impl Occlusion {
                 }
             }
         }
-        depth_range(screen, piece)[0] > far
+        depth::range(screen, piece)[0] > far
     }
-}
-
-/// The farthest corner depth of the piece's polygon: exact (grid depths are below 2^54).
-fn max_corner_depth(screen: &ScreenScene, piece: &Piece) -> f64 {
-    let corners = screen.corners(&screen.polys[piece.poly as usize]);
-    corners.iter().map(|c| c.z).max().unwrap_or(0) as f64
-}
-
-/// An upper bound of the depth of `piece` (bounds `b`) within the rectangle `rect` (grid units,
-/// x0 y0 x1 y1, exact in f64): its plane's largest value over the rectangle shared by `rect` and
-/// `b` widened to integers (a linear function: at a corner), never beyond `hi`, its polygon's
-/// farthest corner.
-///
-/// Bound: the corners are exact; with the plane's coefficients rounded once each,
-/// `|z - ẑ| <= 4·U·(|a·x| + |b·y| + |d|) / c + 2·U·|ẑ|` to first order; the code doubles each
-/// term and widens by 1 % for the rest (as [`depth_range`]).
-fn farthest_within(piece: &Piece, rect: [f64; 4], b: [f64; 4], hi: f64) -> f64 {
-    const U: f64 = f64::EPSILON / 2.0;
-    let (x0, y0, x1, y1) = (
-        rect[0].max(b[0].floor()),
-        rect[1].max(b[1].floor()),
-        rect[2].min(b[2].ceil()),
-        rect[3].min(b[3].ceil()),
-    );
-    let s = &piece.support;
-    let (a, b, c, d) = (
-        i128_to_f64(s.a),
-        i128_to_f64(s.b),
-        i128_to_f64(s.c),
-        i256_to_f64(s.d),
-    );
-    let mut far = f64::MIN;
-    for (x, y) in [(x0, y0), (x1, y0), (x1, y1), (x0, y1)] {
-        let (ax, by) = (a * x, b * y);
-        let z = -(ax + by + d) / c;
-        let err = (8.0 * U * (ax.abs() + by.abs() + d.abs()) / c + 4.0 * U * z.abs()) * 1.01;
-        far = far.max(z + err);
-    }
-    far.min(hi)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact::{GridPoint, Plane};
-    use crate::project::ScreenPoly;
+    use crate::exact::GridPoint;
     use crate::visibility::coverage::back_facing;
     use crate::visibility::initial_pieces;
 
     /// A screen scene of triangles given as (x, y, z) corners.
     fn screen_of(tris: &[[[i64; 3]; 3]]) -> ScreenScene {
-        let mut s = ScreenScene {
-            width: 8,
-            height: 8,
-            ..ScreenScene::default()
-        };
-        for (k, t) in tris.iter().enumerate() {
-            let start = s.points.len() as u32;
-            let pts: Vec<GridPoint> = t.iter().map(|&[x, y, z]| GridPoint { x, y, z }).collect();
-            let plane = Plane::of_polygon(&pts).unwrap();
-            s.points.extend(&pts);
-            s.polys.push(ScreenPoly {
-                face: k as u32,
-                id: k as u32,
-                mesh: 0,
-                start,
-                len: 3,
-                plane,
-                front: true,
-            });
-        }
-        s
+        crate::visibility::screen_of_polygons(
+            (tris.iter()).map(|t| t.iter().map(|&[x, y, z]| GridPoint { x, y, z }).collect()),
+        )
     }
 
     /// An 8 x 8 grid of counter-clockwise squares of side 8 at depth `z`, two triangles each,

@@ -118,35 +118,14 @@ fn convex_once(points: &[[i64; 2]], turn: Ordering) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact::Plane;
-    use crate::project::ScreenPoly;
 
     /// A screen scene of polygons given as (x, y) rings in the plane z = 0, all in mesh 0.
     fn screen_of(rings: &[&[[i64; 2]]]) -> ScreenScene {
-        let mut s = ScreenScene {
-            width: 8,
-            height: 8,
-            ..ScreenScene::default()
-        };
-        for (k, ring) in rings.iter().enumerate() {
-            let start = s.points.len() as u32;
-            let pts: Vec<GridPoint> = ring
-                .iter()
+        crate::visibility::screen_of_polygons(rings.iter().map(|ring| {
+            (ring.iter())
                 .map(|&[x, y]| GridPoint { x, y, z: 0 })
-                .collect();
-            let plane = Plane::of_polygon(&pts).unwrap();
-            s.points.extend(&pts);
-            s.polys.push(ScreenPoly {
-                face: k as u32,
-                id: k as u32,
-                mesh: 0,
-                start,
-                len: pts.len() as u32,
-                plane,
-                front: true,
-            });
-        }
-        s
+                .collect()
+        }))
     }
 
     fn tiles(rings: &[&[[i64; 2]]]) -> bool {
