@@ -26,7 +26,6 @@
 //! is the coverage map's whatever ran (every exact strategy's is), so the drawing's bytes are
 //! the same.
 
-use super::coverage::back_facing;
 use super::coverage_map::coverage_of;
 use super::grid::sweep_overlapping;
 use super::occlusion::drop_hidden;
@@ -108,7 +107,7 @@ impl Strategy for Auto {
             };
         let placed = visible.len();
         // Pieces seen from the back that the front proves hidden need no orderer at all.
-        let occluded = drop_hidden(screen, &mut overlapping, &back_facing(screen));
+        let occluded = drop_hidden(screen, &mut overlapping);
         if occluded > 0 {
             let hidden = format!(
                 "{} proven hidden behind the front before any cut (occlusion cells)",

@@ -23,16 +23,8 @@ pub(crate) use super::live::bounds;
 use super::live::{Live, overlap};
 use super::occlusion::{CELLS_PER_PIECE, Occlusion};
 use crate::exact::polygon::{Piece, Split, separated};
-use crate::exact::twice_signed_area;
 use crate::project::ScreenScene;
 use std::cmp::Reverse;
-
-/// Per polygon of `screen`: is it seen from the back (clockwise on screen, or flat)?
-pub(crate) fn back_facing(screen: &ScreenScene) -> Vec<bool> {
-    (screen.polys.iter())
-        .map(|p| twice_signed_area(screen.corners(p)).is_le())
-        .collect()
-}
 
 /// The order of coplanar pieces, front first: larger face id, then later polygon.
 pub(crate) fn tie_key(screen: &ScreenScene, p: &Piece) -> (Reverse<u32>, Reverse<u32>) {
@@ -63,8 +55,6 @@ pub struct Coverage<'a> {
     /// Where the pieces seen from the front cover the screen, for the cheap proof that a piece
     /// seen from the back is hidden; only when there are both.
     occlusion: Option<Occlusion>,
-    /// Per polygon: seen from the back?
-    back_facing: Vec<bool>,
     /// Counters so far.
     pub stats: CoverageStats,
 }
@@ -87,14 +77,12 @@ impl<'a> Coverage<'a> {
     ) -> Self {
         let pieces: Vec<&Piece> = pieces.into_iter().collect();
         let boxes: Vec<[f64; 4]> = pieces.iter().map(|p| bounds(p)).collect();
-        let back_facing = back_facing(screen);
         Coverage {
             screen,
             visible: Live::over(&boxes, boxes.len()),
             occlusion: occlusion
-                .then(|| Occlusion::of(screen, &pieces, &back_facing, CELLS_PER_PIECE))
+                .then(|| Occlusion::of(screen, &pieces, CELLS_PER_PIECE))
                 .flatten(),
-            back_facing,
             stats: CoverageStats::default(),
         }
     }
@@ -102,9 +90,8 @@ impl<'a> Coverage<'a> {
     /// The map of pieces already pairwise disjoint and in front of whatever will be layered
     /// over them (another exact strategy's visible set), as they are.
     pub fn of_visible(screen: &'a ScreenScene, pieces: Vec<Piece>) -> Self {
-        let mut map = Coverage::new(screen, &pieces);
         // Not whole polygons: no cover can be read from their outlines.
-        map.occlusion = None;
+        let mut map = Coverage::with_occlusion(screen, &pieces, false);
         for p in pieces {
             let b = bounds(&p);
             map.visible.add(p, b);
@@ -171,12 +158,9 @@ impl<'a> Coverage<'a> {
         parts
     }
 
-    /// Is `piece` proven hidden before any cut ([`Occlusion`])? Tried for pieces seen from the
-    /// back only: the cover is made of the others, so it cannot prove them hidden. Counts what
-    /// it hides.
+    /// Is `piece` proven hidden before any cut ([`Occlusion`])? Counts what it hides.
     fn occluded(&mut self, piece: &Piece) -> bool {
-        let hidden = self.back_facing[piece.poly as usize]
-            && (self.occlusion.as_ref()).is_some_and(|o| o.hides(self.screen, piece));
+        let hidden = (self.occlusion.as_ref()).is_some_and(|o| o.hides(self.screen, piece));
         self.stats.occluded += hidden as usize;
         hidden
     }

@@ -24,6 +24,7 @@
 use super::depth;
 use super::live::bounds;
 use crate::exact::polygon::Piece;
+use crate::exact::twice_signed_area;
 use crate::project::ScreenScene;
 use std::cmp::Ordering;
 use std::collections::HashSet;
@@ -34,14 +35,21 @@ pub(crate) const CELLS_PER_PIECE: f64 = 1.0;
 
 /// Removes from `pieces` (the pieces of whole polygons) those seen from the back that the
 /// occlusion cells prove hidden; returns how many. What is left has the same visible set.
-pub(crate) fn drop_hidden(screen: &ScreenScene, pieces: &mut Vec<Piece>, back: &[bool]) -> usize {
+pub(crate) fn drop_hidden(screen: &ScreenScene, pieces: &mut Vec<Piece>) -> usize {
     let refs: Vec<&Piece> = pieces.iter().collect();
-    let Some(cells) = Occlusion::of(screen, &refs, back, CELLS_PER_PIECE) else {
+    let Some(cells) = Occlusion::of(screen, &refs, CELLS_PER_PIECE) else {
         return 0;
     };
     let before = pieces.len();
-    pieces.retain(|p| !(back[p.poly as usize] && cells.hides(screen, p)));
+    pieces.retain(|p| !cells.hides(screen, p));
     before - pieces.len()
+}
+
+/// Per polygon of `screen`: is it seen from the back (clockwise on screen, or flat)?
+fn back_facing(screen: &ScreenScene) -> Vec<bool> {
+    (screen.polys.iter())
+        .map(|p| twice_signed_area(screen.corners(p)).is_le())
+        .collect()
 }
 
 /// The cells. See the module docs.
@@ -53,21 +61,17 @@ pub(crate) struct Occlusion {
     count: [i64; 2],
     /// Per cell: the cover's far bound, or infinity where the cell is not known to be covered.
     far: Vec<f64>,
-    /// Cells found covered.
-    pub covered: usize,
+    /// Per polygon: seen from the back? Only those pieces are tried: the cover is made of the
+    /// others, so it cannot prove them hidden.
+    back_facing: Vec<bool>,
 }
 
 impl Occlusion {
     /// The cells of `pieces` (the pieces of whole polygons), about `cells_per_piece` cells to a
-    /// piece; `back_facing[poly]` says which polygons are seen from the back (clockwise on
-    /// screen, or flat). `None` when there are none, or no others (nothing to try the test on,
-    /// or no cover).
-    pub fn of(
-        screen: &ScreenScene,
-        pieces: &[&Piece],
-        back_facing: &[bool],
-        cells_per_piece: f64,
-    ) -> Option<Occlusion> {
+    /// piece. `None` when no polygon is seen from the back (clockwise on screen, or flat), or
+    /// none from the front (nothing to try the test on, or no cover).
+    pub fn of(screen: &ScreenScene, pieces: &[&Piece], cells_per_piece: f64) -> Option<Occlusion> {
+        let back_facing = back_facing(screen);
         let ccw = |poly: u32| !back_facing[poly as usize];
         let mut polys: Vec<u32> = pieces.iter().map(|p| p.poly).collect();
         polys.sort_unstable();
@@ -101,7 +105,7 @@ impl Occlusion {
             size,
             count,
             far: vec![f64::NEG_INFINITY; (count[0] * count[1]) as usize],
-            covered: 0,
+            back_facing: Vec::new(),
         };
         // Cells a contour side may meet are not covered (NaN marks them until the end).
         let mut sides: HashSet<[i64; 4]> = HashSet::new();
@@ -121,6 +125,7 @@ impl Occlusion {
         let mut inside = vec![false; occlusion.far.len()];
         for p in pieces.iter().filter(|p| ccw(p.poly)) {
             let b = bounds(p);
+            let depth = depth::Farthest::of(screen, p, b);
             let (origin, size) = (occlusion.origin, occlusion.size);
             occlusion.for_cells(b, |far, [i, j]| {
                 if far.is_nan() {
@@ -132,7 +137,7 @@ impl Occlusion {
                     (origin[0] + (i + 1) * size[0]) as f64,
                     (origin[1] + (j + 1) * size[1]) as f64,
                 ];
-                *far = far.max(depth::farthest_within(screen, p, rect, b));
+                *far = far.max(depth.within(rect));
                 let k = (j * count[0] + i) as usize;
                 if !inside[k] {
                     let (x, y) = (
@@ -147,12 +152,11 @@ impl Occlusion {
             });
         }
         for (far, inside) in occlusion.far.iter_mut().zip(inside) {
-            if inside && !far.is_nan() {
-                occlusion.covered += 1;
-            } else {
+            if !inside || far.is_nan() {
                 *far = f64::INFINITY;
             }
         }
+        occlusion.back_facing = back_facing;
         Some(occlusion)
     }
 
@@ -215,8 +219,11 @@ impl Occlusion {
         }
     }
 
-    /// Is `piece` proven hidden behind the cover? (See the module docs.)
+    /// Is `piece` seen from the back and proven hidden behind the cover? (See the module docs.)
     pub fn hides(&self, screen: &ScreenScene, piece: &Piece) -> bool {
+        if !self.back_facing[piece.poly as usize] {
+            return false;
+        }
         let [i0, i1, j0, j1] = self.cells_of(bounds(piece));
         if i0 < 0 || j0 < 0 || i1 >= self.count[0] || j1 >= self.count[1] {
             return false;
@@ -238,7 +245,6 @@ impl Occlusion {
 mod tests {
     use super::*;
     use crate::exact::GridPoint;
-    use crate::visibility::coverage::back_facing;
     use crate::visibility::initial_pieces;
 
     /// A screen scene of triangles given as (x, y, z) corners.
@@ -272,7 +278,7 @@ mod tests {
         let refs: Vec<&Piece> = pieces.iter().collect();
         let back = back_facing(&s);
         assert!(back[tris.len() - 1] && !back[0]);
-        let o = Occlusion::of(&s, &refs, &back, 1.0).expect("front and back");
+        let o = Occlusion::of(&s, &refs, 1.0).expect("front and back");
         o.hides(&s, pieces.last().unwrap())
     }
 
