@@ -55,7 +55,10 @@ pub struct ScreenPoly {
     pub len: u32,
     /// Its support plane, through its exact grid corners (`c > 0`).
     pub plane: Plane,
-    /// Seen from its front (after un-flipping inside-out meshes).
+    /// Seen from its front: counter-clockwise on screen, or clockwise in a mesh wound inwards
+    /// (closed and inside-out, or open with a certainly negative signed volume:
+    /// [`crate::scene::analysis::MeshAnalysis::wound_inwards`]). Culling drops only the back
+    /// faces of closed meshes; for open ones this is where the surface most likely faces the eye.
     pub front: bool,
 }
 
@@ -482,8 +485,7 @@ pub fn project(
             sides.truncate(start);
             continue;
         };
-        let inside_out = analysis.meshes[face.mesh as usize].inside_out();
-        let front = area.is_gt() != inside_out;
+        let front = area.is_gt() != analysis.meshes[face.mesh as usize].wound_inwards();
         let two_sided = scene.materials[face.material as usize].two_sided;
         if !front && !two_sided && mesh_may_cull(face.mesh as usize) {
             stats.backface_culled += 1;

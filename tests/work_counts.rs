@@ -16,7 +16,8 @@ use sightline::pipeline::prepare;
 use sightline::project::CullMode;
 use sightline::scene::Scene;
 use sightline::scene::primitives::{
-    holed_sphere_scene, interpenetrating_tori, random_triangle_soup, sphere_scene,
+    exported_sphere_scene, holed_sphere_scene, interpenetrating_tori, random_triangle_soup,
+    sphere_scene,
 };
 
 const RECORD: &str = "tests/golden/work_counts.json";
@@ -40,6 +41,12 @@ fn scenes() -> Vec<(&'static str, Scene, Camera)> {
     out.push(("sphere_4000", fit(&sphere, NamedView::Iso), sphere));
     let open = holed_sphere_scene(48, 24);
     out.push(("open_sphere", fit(&open, NamedView::Iso), open));
+    let inside_out = exported_sphere_scene(2_000);
+    out.push((
+        "inside_out_sphere",
+        fit(&inside_out, NamedView::Iso),
+        inside_out,
+    ));
     let tori = interpenetrating_tori(32, 12);
     out.push(("interpenetrating_tori", fit(&tori, NamedView::Iso), tori));
     let soup = random_triangle_soup(60, 7);

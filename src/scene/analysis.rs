@@ -39,6 +39,14 @@ impl MeshAnalysis {
     pub fn inside_out(&self) -> bool {
         self.cullable() && self.signed_volume < 0.0
     }
+
+    /// Wound inwards, closed or not: the signed volume (about the mesh's first vertex) is
+    /// certainly negative. For an open mesh this is a guess at which side is outside (a sphere
+    /// exported without its poles and inside out says so clearly; a lone square says nothing),
+    /// good for deciding what to try first, never for what may be dropped unseen.
+    pub fn wound_inwards(&self) -> bool {
+        self.volume_sign_certain && self.signed_volume < 0.0
+    }
 }
 
 /// Camera-independent facts about a scene.
@@ -257,6 +265,20 @@ mod tests {
         let a = analyse(&cube(false, true));
         assert_eq!(a.meshes[0].boundary_edges, 4);
         assert!(!a.meshes[0].cullable());
+        assert!(!a.meshes[0].wound_inwards());
+        // Open and flipped: not culled, but its winding says which side is outside.
+        let a = analyse(&cube(true, true));
+        assert!(!a.meshes[0].cullable() && !a.meshes[0].inside_out());
+        assert!(a.meshes[0].wound_inwards());
+    }
+
+    #[test]
+    fn a_sphere_exported_open_and_inside_out_is_wound_inwards_but_never_culled() {
+        let a = analyse(&crate::scene::primitives::exported_sphere_scene(2_000));
+        assert!(a.meshes[0].boundary_edges > 0 && !a.meshes[0].cullable());
+        assert!(a.meshes[0].wound_inwards());
+        let a = analyse(&crate::scene::primitives::sphere_scene(2_000));
+        assert!(a.meshes[0].cullable() && !a.meshes[0].wound_inwards());
     }
 
     #[test]

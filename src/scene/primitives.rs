@@ -399,20 +399,46 @@ pub fn sphere_scene_resolution(triangles: usize) -> (usize, usize) {
 /// `2·s·(n-1)` for the resolution [`sphere_scene_resolution`] picks; the scene's face count
 /// tells). Every face is a triangle: the band quads are split in two. One mesh, default material.
 pub fn sphere_scene(triangles: usize) -> Scene {
+    uv_sphere_triangles(&format!("sphere_scene({triangles})"), triangles, true)
+}
+
+/// The sphere of [`sphere_scene`] as many tools export it, and as the benchmark scenes of
+/// `../shared/compare/scenes.py` write it: without the triangle fans at the poles (so open) and
+/// wound inwards (inside out). An open mesh of a single orientation seen from the inside: its
+/// back faces cannot be culled, and the near half is clockwise on screen.
+pub fn exported_sphere_scene(triangles: usize) -> Scene {
+    uv_sphere_triangles(
+        &format!("exported_sphere_scene({triangles})"),
+        triangles,
+        false,
+    )
+}
+
+/// The triangles of the UV sphere of about `triangles` triangles: closed and wound outwards, or
+/// without the pole fans and wound inwards.
+fn uv_sphere_triangles(name: &str, triangles: usize, closed_outwards: bool) -> Scene {
     let (s, n) = sphere_scene_resolution(triangles);
     let t = sphere_mesh(1.0, s, n);
-    let mut b = SceneBuilder::new(&format!("sphere_scene({triangles})"));
+    let mut b = SceneBuilder::new(name);
     b.begin_mesh("sphere");
     let m = b.default_material();
     for p in &t.positions {
         b.add_vertex(*p);
     }
+    let mut add = |[a, b_, c]: [u32; 3]| {
+        let f = if closed_outwards {
+            [a, b_, c]
+        } else {
+            [a, c, b_]
+        };
+        b.add_face(&f, m);
+    };
     for f in t.faces() {
         if f.len() == 4 {
-            b.add_face(&[f[0], f[1], f[2]], m);
-            b.add_face(&[f[0], f[2], f[3]], m);
-        } else {
-            b.add_face(f, m);
+            add([f[0], f[1], f[2]]);
+            add([f[0], f[2], f[3]]);
+        } else if closed_outwards {
+            add([f[0], f[1], f[2]]);
         }
     }
     b.finish().unwrap_or_default()

@@ -106,16 +106,13 @@ impl Strategy for Auto {
                 (Vec::new(), pieces)
             };
         let placed = visible.len();
-        // Pieces seen from the back that the front proves hidden need no orderer at all.
+        // Pieces facing away that the surface facing the eye proves hidden need no orderer.
         let occluded = drop_hidden(screen, &mut overlapping);
         if occluded > 0 {
             let hidden = format!(
-                "{} proven hidden behind the front before any cut (occlusion cells)",
-                count(
-                    occluded,
-                    "piece seen from the back",
-                    "pieces seen from the back"
-                )
+                "{} proven hidden behind the surface facing the eye before any cut (occlusion \
+                 cells)",
+                count(occluded, "piece facing away", "pieces facing away")
             );
             let culled = match ps.culled_meshes {
                 0 => format!("done: {hidden}; no closed mesh of certain orientation to cull"),

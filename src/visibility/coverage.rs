@@ -52,8 +52,8 @@ pub struct Coverage<'a> {
     screen: &'a ScreenScene,
     /// Every piece ever made visible; removed once replaced.
     visible: Live,
-    /// Where the pieces seen from the front cover the screen, for the cheap proof that a piece
-    /// seen from the back is hidden; only when there are both.
+    /// Where the pieces facing the eye cover the screen, for the cheap proof that a piece facing
+    /// away is hidden; only when there are both.
     occlusion: Option<Occlusion>,
     /// Counters so far.
     pub stats: CoverageStats,

@@ -154,7 +154,7 @@ pub fn pixel_ring(samples: &Samples, corners: &[GridPoint]) -> Vec<[f64; 2]> {
 }
 
 /// A screen scene (8 x 8 pixels) of the given polygons' grid corners, each its own face, all in
-/// mesh 0: the unit tests' scenes.
+/// mesh 0 (wound outwards: the counter-clockwise ones face the eye): the unit tests' scenes.
 #[cfg(test)]
 pub(crate) fn screen_of_polygons(polys: impl IntoIterator<Item = Vec<GridPoint>>) -> ScreenScene {
     let mut s = ScreenScene {
@@ -172,8 +172,8 @@ pub(crate) fn screen_of_polygons(polys: impl IntoIterator<Item = Vec<GridPoint>>
             mesh: 0,
             start,
             len: pts.len() as u32,
+            front: crate::exact::twice_signed_area(&pts).is_gt(),
             plane,
-            front: true,
         });
     }
     s

@@ -1,30 +1,33 @@
-//! Occlusion cells: where the polygons seen from the front certainly cover the screen, and how
-//! far they lie there at most, so that a piece seen from the back that lies within such cells,
-//! wholly behind them, is proven hidden without being cut by anything (open meshes keep their
-//! back faces; most of them lie behind the front of the surface).
+//! Occlusion cells: where the polygons facing the eye certainly cover the screen, and how far
+//! they lie there at most, so that a piece facing away that lies within such cells, wholly behind
+//! them, is proven hidden without being cut by anything (open meshes keep their back faces; most
+//! of them lie behind the front of the surface).
 //!
-//! The cover is the union U of the counter-clockwise (front-facing) polygons on screen. Its
-//! boundary lies on their contour: the sides that no other such polygon runs along the other
-//! way (two counter-clockwise polygons running along a side in opposite directions lie on its two
-//! sides, so the points inside it are inside U; a boundary point at a corner lies on a side that
-//! has U on one side only). The screen box is divided into cells with integer corners:
+//! The cover is the union U of the polygons seen from the front (`ScreenPoly::front`:
+//! counter-clockwise on screen, clockwise in meshes wound inwards, as many exporters write
+//! spheres); only the others are tried against it. Which polygons cover is a choice of what to
+//! try, never a reason to drop anything: a piece is dropped only by the exact test below. U's
+//! boundary lies on the cover's contour: the sides that no other cover polygon runs along the
+//! other way (two polygons of one orientation running along a side in opposite directions lie on
+//! its two sides, so the points inside it are inside U; a boundary point at a corner lies on a
+//! side that has U on one side only; cover polygons of both orientations only leave more sides
+//! unmatched). The screen box is divided into cells with integer corners:
 //! - a cell met by no contour side (by its box, widened) holds no boundary point of U, so its
 //!   interior lies wholly inside U or wholly outside; it is inside when its centre, a grid point
-//!   inside the cell, lies in a front piece;
-//! - such a cell's `far` bounds the depth of every front piece meeting it over the cell (its
+//!   inside the cell, lies in a cover piece;
+//! - such a cell's `far` bounds the depth of every cover piece meeting it over the cell (its
 //!   plane at the corners of the cell's overlap with the piece's bounds: a linear function), so
-//!   at every point of the cell the nearest surface is at most `far` away (a front piece covers
+//!   at every point of the cell the nearest surface is at most `far` away (a cover piece covers
 //!   the point, and the nearest surface is no farther than it).
 //!
-//! A piece whose bounds lie within covered cells and whose proven nearest depth is strictly
-//! beyond each of their `far` is hidden everywhere ([`Occlusion::hides`]). Invariant: every
-//! decision is exact (integer cells and contour sides, exact point-in-piece signs) or a proven
-//! f64 bound ([`depth`]); a piece the test cannot prove hidden goes the usual way.
+//! A piece facing away whose bounds lie within covered cells and whose proven nearest depth is
+//! strictly beyond each of their `far` is hidden everywhere ([`Occlusion::hides`]). Invariant:
+//! every decision is exact (integer cells and contour sides, exact point-in-piece signs) or a
+//! proven f64 bound ([`depth`]); a piece the test cannot prove hidden goes the usual way.
 
 use super::depth;
 use super::live::bounds;
 use crate::exact::polygon::Piece;
-use crate::exact::twice_signed_area;
 use crate::project::ScreenScene;
 use std::cmp::Ordering;
 use std::collections::HashSet;
@@ -33,8 +36,8 @@ use std::collections::HashSet;
 /// to fill; one per piece measured best on the bunny and the teapot (0.25 and 4 did worse).
 pub(crate) const CELLS_PER_PIECE: f64 = 1.0;
 
-/// Removes from `pieces` (the pieces of whole polygons) those seen from the back that the
-/// occlusion cells prove hidden; returns how many. What is left has the same visible set.
+/// Removes from `pieces` (the pieces of whole polygons) those facing away that the occlusion
+/// cells prove hidden; returns how many. What is left has the same visible set.
 pub(crate) fn drop_hidden(screen: &ScreenScene, pieces: &mut Vec<Piece>) -> usize {
     let refs: Vec<&Piece> = pieces.iter().collect();
     let Some(cells) = Occlusion::of(screen, &refs, CELLS_PER_PIECE) else {
@@ -45,11 +48,9 @@ pub(crate) fn drop_hidden(screen: &ScreenScene, pieces: &mut Vec<Piece>) -> usiz
     before - pieces.len()
 }
 
-/// Per polygon of `screen`: is it seen from the back (clockwise on screen, or flat)?
+/// Per polygon of `screen`: is it seen from the back (`ScreenPoly::front`)?
 fn back_facing(screen: &ScreenScene) -> Vec<bool> {
-    (screen.polys.iter())
-        .map(|p| twice_signed_area(screen.corners(p)).is_le())
-        .collect()
+    screen.polys.iter().map(|p| !p.front).collect()
 }
 
 /// The cells. See the module docs.
@@ -62,14 +63,14 @@ pub(crate) struct Occlusion {
     /// Per cell: the cover's far bound, or infinity where the cell is not known to be covered.
     far: Vec<f64>,
     /// Per polygon: seen from the back? Only those pieces are tried: the cover is made of the
-    /// others, so it cannot prove them hidden.
+    /// others.
     back_facing: Vec<bool>,
 }
 
 impl Occlusion {
     /// The cells of `pieces` (the pieces of whole polygons), about `cells_per_piece` cells to a
-    /// piece. `None` when no polygon is seen from the back (clockwise on screen, or flat), or
-    /// none from the front (nothing to try the test on, or no cover).
+    /// piece. `None` when no polygon is seen from the back, or none from the front (nothing to
+    /// try the test on, or no cover).
     pub fn of(screen: &ScreenScene, pieces: &[&Piece], cells_per_piece: f64) -> Option<Occlusion> {
         let back_facing = back_facing(screen);
         let ccw = |poly: u32| !back_facing[poly as usize];
@@ -296,6 +297,26 @@ mod tests {
         let mut tris = front_grid(1000, None);
         tris.push(back_triangle(36, 28, 2000));
         assert!(last_hidden(&tris));
+    }
+
+    #[test]
+    fn the_cover_is_what_faces_the_eye_so_meshes_wound_inwards_hide_their_far_side_too() {
+        // Clockwise triangles facing the eye (a mesh wound inwards) hide a counter-clockwise
+        // one behind them; then the same scene wound outwards hides nothing.
+        let flip = |[a, b, c]: [[i64; 3]; 3]| [a, c, b];
+        let mut tris: Vec<_> = front_grid(1000, None).into_iter().map(flip).collect();
+        tris.push(flip(back_triangle(36, 28, 2000)));
+        let mut s = screen_of(&tris);
+        for p in s.polys.iter_mut() {
+            p.front = !p.front;
+        }
+        let pieces = initial_pieces(&s);
+        let refs: Vec<&Piece> = pieces.iter().collect();
+        let o = Occlusion::of(&s, &refs, 1.0).expect("front and back");
+        assert!(o.hides(&s, pieces.last().unwrap()));
+        let s = screen_of(&tris);
+        let o = Occlusion::of(&s, &refs, 1.0).expect("front and back");
+        assert!(!o.hides(&s, pieces.last().unwrap()));
     }
 
     #[test]
