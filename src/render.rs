@@ -11,10 +11,11 @@
 use crate::camera::Camera;
 use crate::draw::{DrawOptions, draw};
 use crate::error::{Error, Result};
+use crate::lines::LineDrawing;
 use crate::lines::LineOptions;
 use crate::methods::{self, Engine, Method, Output, names_with};
 use crate::output::drawing::Drawing;
-use crate::output::line_svg::{LineSvgOptions, add_line_layers};
+use crate::output::line_svg::LineSvgOptions;
 use crate::output::{json, png, raster_drawing, svg};
 use crate::paint::{Fill, Paint, screen_paints, to_u8};
 use crate::pipeline::colorize_painted;
@@ -330,14 +331,17 @@ pub struct Rendered {
     /// applied or not read).
     pub warnings: Vec<String>,
     /// Seconds spent in each stage, in order: "visible set" or "image", then for drawings
-    /// "regions" (merge, seams, canonical form) and "document" (the SVG or JSON text).
+    /// "regions" (merge, seams, canonical form), then "lines" for SVG with hidden lines, or
+    /// "document" for JSON (its text; SVG is written as it is made, by [`Rendered::write`]).
     pub stage_seconds: Vec<(&'static str, f64)>,
 }
 
 /// The bytes of a render, or what streams them.
 enum Body {
-    /// SVG or JSON text.
+    /// JSON text.
     Text(String),
+    /// A drawing, written as SVG element by element, with hidden lines over it if asked.
+    Svg(Box<(Drawing, svg::SvgOptions, Option<LineDrawing>)>),
     /// A drawing, rasterized by strips as its PNG is written.
     Drawing(Drawing),
     /// An image-space method's image.
@@ -345,11 +349,17 @@ enum Body {
 }
 
 impl Rendered {
-    /// Writes the output: the SVG or JSON text, or the PNG (a drawing's is rasterized in strips
-    /// of rows as it streams out).
+    /// Writes the output: the SVG (streamed as it is made) or JSON text, or the PNG (a
+    /// drawing's is rasterized in strips of rows as it streams out).
     pub fn write(&self, out: &mut dyn Write) -> io::Result<()> {
         match &self.body {
             Body::Text(text) => out.write_all(text.as_bytes()),
+            Body::Svg(svg) => {
+                let (drawing, options, lines) = &**svg;
+                let line_options = LineSvgOptions::default();
+                let lines = lines.as_ref().map(|l| (l, &line_options));
+                svg::write_document(out, drawing, options, lines)
+            }
             Body::Drawing(drawing) => raster_drawing::write_png(drawing, out),
             Body::Pixels(rgb) => png::write_rgb(out, self.width, self.height, rgb),
         }
@@ -461,13 +471,17 @@ pub fn render(
                         stroke: options.stroke.then_some(([0.0; 3], 0.5)),
                         crisp: options.crisp,
                     };
-                    let mut doc = svg::document(&drawing, &svg_options);
-                    if let Some(line_options) = &options.lines {
-                        let lines =
-                            crate::lines::line_drawing(scene, camera, line_options, report)?;
-                        doc = add_line_layers(doc, &lines.drawing, &LineSvgOptions::default());
+                    let lines = match &options.lines {
+                        Some(line_options) => Some(
+                            crate::lines::line_drawing(scene, camera, line_options, report)?
+                                .drawing,
+                        ),
+                        None => None,
+                    };
+                    if lines.is_some() {
+                        lap("lines");
                     }
-                    Body::Text(svg::document_text(doc))
+                    Body::Svg(Box::new((drawing, svg_options, lines)))
                 }
                 Output::Json => {
                     let mut stats = visible.stats;
@@ -476,7 +490,7 @@ pub fn render(
                 }
                 Output::Png => Body::Drawing(drawing),
             };
-            if options.format != Output::Png {
+            if options.format == Output::Json {
                 lap("document");
             }
             (body, None)

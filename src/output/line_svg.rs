@@ -1,5 +1,5 @@
 //! SVG output of a hidden-line drawing ([`LineDrawing`]), standalone ([`write_line_svg`]) or laid
-//! over a filled drawing ([`add_line_layers`], `render --lines`).
+//! over a filled drawing ([`write_line_layers`], `render --lines`).
 //!
 //! Invariants:
 //! - **Layers by class**: one `<g class="VISIBILITY KIND">` per (visibility, kind) that has
@@ -20,7 +20,8 @@
 //!
 //! The README's "Output contract" lists every element, class and attribute.
 
-use super::svg::{document_text, hex, num};
+use super::svg::{hex, num};
+use super::svg_stream::SvgStream;
 use crate::lines::{LineDrawing, LineKind, Stroke, Visibility};
 use ::svg::Document;
 use ::svg::node::element::{Group, Path, Rectangle, Style};
@@ -90,23 +91,33 @@ pub fn write_line_svg(drawing: &LineDrawing, options: &LineSvgOptions) -> String
         .set("viewBox", format!("0 0 {w} {h}"))
         .set("width", w)
         .set("height", h);
-    let doc = match options.background {
-        Some(bg) => doc.add(
-            Rectangle::new()
-                .set("width", w)
-                .set("height", h)
-                .set("fill", hex(bg)),
-        ),
-        None => doc,
-    };
-    document_text(add_line_layers(doc, drawing, options))
+    let mut out = Vec::new();
+    let mut s = SvgStream::new(&mut out, doc);
+    let written = (|| {
+        if let Some(bg) = options.background {
+            s.child(
+                Rectangle::new()
+                    .set("width", w)
+                    .set("height", h)
+                    .set("fill", hex(bg)),
+            )?;
+        }
+        write_line_layers(&mut s, drawing, options)?;
+        s.finish()
+    })();
+    written.expect("writing into memory cannot fail");
+    String::from_utf8(out).expect("the document is UTF-8")
 }
 
-/// `doc` with the line layers of `drawing` added on top of what it holds: the `<style>` and one
-/// group per (visibility, kind), hidden first. `options.background` is not drawn here (the
-/// document has its own).
-pub fn add_line_layers(doc: Document, drawing: &LineDrawing, options: &LineSvgOptions) -> Document {
-    let mut doc = doc.add(Style::new(options.css()));
+/// Writes the line layers of `drawing` into the open document `s`, over what it holds: the
+/// `<style>` and one group per (visibility, kind), hidden first. `options.background` is not
+/// drawn here (the document has its own).
+pub fn write_line_layers(
+    s: &mut SvgStream,
+    drawing: &LineDrawing,
+    options: &LineSvgOptions,
+) -> std::io::Result<()> {
+    s.child(Style::new(options.css()))?;
     for visibility in [Visibility::Hidden, Visibility::Visible] {
         for kind in LineKind::ALL {
             let mut strokes = drawing
@@ -117,19 +128,18 @@ pub fn add_line_layers(doc: Document, drawing: &LineDrawing, options: &LineSvgOp
             if strokes.peek().is_none() {
                 continue;
             }
-            let mut group =
-                Group::new().set("class", format!("{} {}", visibility.name(), kind.name()));
+            s.open(Group::new().set("class", format!("{} {}", visibility.name(), kind.name())))?;
             for stroke in strokes {
-                group = group.add(
+                s.child(
                     Path::new()
                         .set("d", path_data(stroke))
                         .set("data-kind", kind.name()),
-                );
+                )?;
             }
-            doc = doc.add(group);
+            s.close()?;
         }
     }
-    doc
+    Ok(())
 }
 
 /// `Mx yLx y...`, then `Z` for a closed stroke; every coordinate by [`num`].

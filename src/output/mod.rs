@@ -27,6 +27,7 @@ pub mod pdf;
 pub mod png;
 pub mod raster_drawing;
 pub mod svg;
+pub mod svg_stream;
 
 use crate::error::Error;
 use std::fs::{File, Metadata, OpenOptions, Permissions};

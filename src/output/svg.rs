@@ -11,15 +11,19 @@
 //!   rounded), `fill-opacity` only when below 1.
 //! - **Deterministic**: the same drawing and options give the same bytes (the `svg` crate writes
 //!   attributes sorted by name).
+//! - **Streamed**: elements are written as they are made ([`super::svg_stream`]); the document
+//!   never exists whole in memory, only one path's text at a time.
 //!
 //! Paths are written as the drawing has them: canonicalize it first
 //! ([`super::canonical::canonicalize`], as the CLI does) for bytes that depend only on what is
 //! drawn. The README's "Output contract" lists every element and attribute.
 
 use super::drawing::{Drawing, Seams};
+use super::line_svg::{LineSvgOptions, write_line_layers};
+use super::svg_stream::SvgStream;
+use crate::lines::LineDrawing;
 use crate::paint::to_u8;
 use ::svg::Document;
-use ::svg::Node;
 use ::svg::node::element::{ClipPath, Definitions, Group, Path, Rectangle};
 use std::fmt::Write;
 
@@ -35,12 +39,19 @@ pub struct SvgOptions {
 
 /// The SVG document of `drawing`. Coordinates must be finite (as every [`Drawing`] keeps them).
 pub fn write_svg(drawing: &Drawing, options: &SvgOptions) -> String {
-    document_text(document(drawing, options))
+    let mut out = Vec::new();
+    write_document(&mut out, drawing, options, None).expect("writing into memory cannot fail");
+    String::from_utf8(out).expect("the document is UTF-8")
 }
 
-/// The SVG document of `drawing` as a tree, for adding layers over it (as `render --lines`
-/// adds [`super::line_svg::add_line_layers`]); [`document_text`] writes it.
-pub fn document(drawing: &Drawing, options: &SvgOptions) -> Document {
+/// Writes the SVG document of `drawing` to `out` as it goes (see [`super::svg_stream`]), with
+/// `lines` laid over it when given (as `render --lines` does, [`write_line_layers`]).
+pub fn write_document(
+    out: &mut dyn std::io::Write,
+    drawing: &Drawing,
+    options: &SvgOptions,
+    lines: Option<(&LineDrawing, &LineSvgOptions)>,
+) -> std::io::Result<()> {
     let (w, h) = (drawing.width, drawing.height);
     let mut doc = Document::new()
         .set("viewBox", format!("0 0 {w} {h}"))
@@ -49,17 +60,17 @@ pub fn document(drawing: &Drawing, options: &SvgOptions) -> Document {
     if options.crisp {
         doc = doc.set("shape-rendering", "crispEdges");
     }
+    let mut s = SvgStream::new(out, doc);
     if let Some(bg) = drawing.background {
-        doc = doc.add(
+        s.child(
             Rectangle::new()
                 .set("width", w)
                 .set("height", h)
                 .set("fill", hex(bg)),
-        );
+        )?;
     }
     if !drawing.seams.is_empty() {
-        let (clip, strokes) = seams(&drawing.seams);
-        doc = doc.add(clip).add(strokes);
+        write_seams(&mut s, &drawing.seams)?;
     }
     // Outlines go on one group rather than on every path: the same look, fewer bytes.
     let mut group = Group::new();
@@ -69,12 +80,12 @@ pub fn document(drawing: &Drawing, options: &SvgOptions) -> Document {
             .set("stroke-width", num(width))
             .set("stroke-linejoin", "round");
     }
-    let mut d = String::new();
+    s.open(group)?;
     for item in &drawing.items {
-        d.clear();
-        write_rings(&mut d, &item.rings, num);
+        let mut d = String::new();
+        write_rings(&mut d, &item.rings, push_num);
         let mut path = Path::new()
-            .set("d", d.as_str())
+            .set("d", d)
             .set("fill", hex(item.color))
             .set("fill-rule", "evenodd")
             .set("data-face", item.face);
@@ -88,16 +99,13 @@ pub fn document(drawing: &Drawing, options: &SvgOptions) -> Document {
         if item.opacity < 1.0 {
             path = path.set("fill-opacity", num(item.opacity.max(0.0)));
         }
-        group.append(path);
+        s.child(path)?;
     }
-    doc.add(group)
-}
-
-/// The text of an SVG document, ending with a newline.
-pub fn document_text(doc: Document) -> String {
-    let mut out = doc.to_string();
-    out.push('\n');
-    out
+    s.close()?;
+    if let Some((lines, line_options)) = lines {
+        write_line_layers(&mut s, lines, line_options)?;
+    }
+    s.finish()
 }
 
 /// Width of the seam strokes, in screen pixels whatever the zoom (`non-scaling-stroke`): wide
@@ -113,20 +121,25 @@ const SEAM_CLIP_ID: &str = "sightline-opaque";
 /// then one path of segments per colour, butt ends. Both are written to a thousandth of a pixel:
 /// they fill gaps under exact boundaries and bound no region; a clip a thousandth of a pixel
 /// off the silhouette lets through at most that much of a stroke along it.
-fn seams(seams: &Seams) -> (Definitions, Group) {
+fn write_seams(s: &mut SvgStream, seams: &Seams) -> std::io::Result<()> {
     let mut outline = String::new();
-    write_rings(&mut outline, &seams.outline, milli);
-    let clip = ClipPath::new()
-        .set("id", SEAM_CLIP_ID)
-        .add(Path::new().set("d", outline).set("clip-rule", "evenodd"));
-    let mut group = Group::new()
-        .set("clip-path", format!("url(#{SEAM_CLIP_ID})"))
-        .set("fill", "none")
-        .set("stroke-width", num(SEAM_WIDTH))
-        .set("stroke-linecap", "butt");
-    let mut d = String::new();
+    write_rings(&mut outline, &seams.outline, push_milli);
+    s.open(Definitions::new())?;
+    s.child(
+        ClipPath::new()
+            .set("id", SEAM_CLIP_ID)
+            .add(Path::new().set("d", outline).set("clip-rule", "evenodd")),
+    )?;
+    s.close()?;
+    s.open(
+        Group::new()
+            .set("clip-path", format!("url(#{SEAM_CLIP_ID})"))
+            .set("fill", "none")
+            .set("stroke-width", num(SEAM_WIDTH))
+            .set("stroke-linecap", "butt"),
+    )?;
     for stroke in &seams.strokes {
-        d.clear();
+        let mut d = String::new();
         for [p, q] in &stroke.segments {
             let (p, q) = (p.map(milli), q.map(milli));
             // Shorter than the rounding: a butt-ended stroke of no length draws nothing.
@@ -135,28 +148,41 @@ fn seams(seams: &Seams) -> (Definitions, Group) {
             }
         }
         // vector-effect is not inherited: it goes on every path.
-        group.append(
+        s.child(
             Path::new()
-                .set("d", d.as_str())
+                .set("d", d)
                 .set("stroke", hex(stroke.color))
                 .set("vector-effect", "non-scaling-stroke"),
-        );
+        )?;
     }
-    (Definitions::new().add(clip), group)
+    s.close()
 }
 
-/// Path data of closed rings, each coordinate written by `num`.
-fn write_rings(d: &mut String, rings: &[Vec<[f64; 2]>], num: fn(f64) -> String) {
+/// Path data of closed rings, each coordinate written by `num` (into the string, after what it
+/// holds).
+fn write_rings(d: &mut String, rings: &[Vec<[f64; 2]>], num: fn(&mut String, f64)) {
     for ring in rings {
         for (k, p) in ring.iter().enumerate() {
             debug_assert!(p[0].is_finite() && p[1].is_finite());
-            let cmd = if k == 0 { 'M' } else { 'L' };
-            let _ = write!(d, "{cmd}{} {}", num(p[0]), num(p[1]));
+            d.push(if k == 0 { 'M' } else { 'L' });
+            num(d, p[0]);
+            d.push(' ');
+            num(d, p[1]);
         }
         if !ring.is_empty() {
             d.push('Z');
         }
     }
+}
+
+/// [`num`], written into `d`.
+fn push_num(d: &mut String, x: f64) {
+    let _ = write!(d, "{}", x + 0.0);
+}
+
+/// [`milli`], written into `d`.
+fn push_milli(d: &mut String, x: f64) {
+    d.push_str(&milli(x));
 }
 
 /// `x` to three decimals, without trailing zeros.

@@ -1,0 +1,132 @@
+//! An SVG document written element by element as it is made, never held whole in memory.
+//!
+//! The `svg` crate formats every element (attributes sorted by name, values escaped); this
+//! module only nests them: an element is opened, its children follow, it is closed. The bytes
+//! are those the crate's own document tree prints (`Document::to_string`): a child follows its
+//! parent's opening tag on a new line, a closing tag follows the last child on a new line, and
+//! an element that gets no child is written self-closing (`<g/>`). So a drawing streamed here
+//! and one built as a tree are the same file, and only one path's text exists at a time.
+
+use ::svg::Node;
+use ::svg::node::element::Element;
+use std::io::{self, Write};
+
+/// The writer. Open elements with [`Self::open`], add children with [`Self::child`], close
+/// them with [`Self::close`]; [`Self::finish`] closes what is open and ends the file.
+pub struct SvgStream<'w> {
+    out: &'w mut dyn Write,
+    /// The open elements, outermost first: each one's name, and its opening tag while it has
+    /// no child yet (written when the first child comes, or self-closing at its close).
+    open: Vec<(String, Option<String>)>,
+}
+
+impl<'w> SvgStream<'w> {
+    /// A document on `out` whose root is `root` (an `svg::Document`, with its attributes and no
+    /// children).
+    pub fn new(out: &'w mut dyn Write, root: impl Into<Element>) -> SvgStream<'w> {
+        let mut s = SvgStream {
+            out,
+            open: Vec::new(),
+        };
+        s.push(root.into());
+        s
+    }
+
+    /// Opens `element` (its attributes; children come next) inside the current element.
+    pub fn open(&mut self, element: impl Into<Element>) -> io::Result<()> {
+        self.start_child()?;
+        self.push(element.into());
+        Ok(())
+    }
+
+    /// Writes `node`, whole, as the next child of the current element.
+    pub fn child(&mut self, node: impl Node) -> io::Result<()> {
+        self.start_child()?;
+        write!(self.out, "{node}")
+    }
+
+    /// Closes the current element.
+    pub fn close(&mut self) -> io::Result<()> {
+        let (name, pending) = self.open.pop().expect("an open element");
+        match pending {
+            // No child: the crate writes it self-closing.
+            Some(tag) => self.out.write_all(tag.as_bytes()),
+            None => write!(self.out, "\n</{name}>"),
+        }
+    }
+
+    /// Closes every open element and ends the file with a newline.
+    pub fn finish(mut self) -> io::Result<()> {
+        while !self.open.is_empty() {
+            self.close()?;
+        }
+        self.out.write_all(b"\n")
+    }
+
+    fn push(&mut self, element: Element) {
+        let name = element.get_name().to_string();
+        // An element without children prints self-closing: that is its opening tag but for
+        // the end.
+        let tag = element.to_string();
+        debug_assert!(tag.ends_with("/>"), "{tag}: opened with children");
+        self.open.push((name, Some(tag)));
+    }
+
+    /// Writes the current element's opening tag if no child has, then the new line a child
+    /// starts on.
+    fn start_child(&mut self) -> io::Result<()> {
+        let (_, pending) = self.open.last_mut().expect("an open element");
+        if let Some(tag) = pending.take() {
+            let open = tag.strip_suffix("/>").expect("self-closing");
+            write!(self.out, "{open}>")?;
+        }
+        self.out.write_all(b"\n")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ::svg::Document;
+    use ::svg::node::element::{ClipPath, Definitions, Group, Path, Rectangle, Style};
+
+    #[test]
+    fn a_streamed_document_has_the_bytes_of_the_crates_tree() {
+        let path = |d: &str| Path::new().set("d", d).set("fill", "#102030");
+        let doc = Document::new().set("viewBox", "0 0 4 3").set("width", 4);
+        let tree = doc
+            .clone()
+            .add(Rectangle::new().set("width", 4).set("fill", "#ffffff"))
+            .add(Definitions::new().add(ClipPath::new().set("id", "c").add(path("M0 0L1 1Z"))))
+            .add(Group::new().set("clip-path", "url(#c)"))
+            .add(Group::new().add(path("M1 2L3 4Z")).add(path("M5 6L7 8Z")))
+            .add(Style::new(".a{fill:none} b > c & d"));
+        let mut streamed = Vec::new();
+        let mut s = SvgStream::new(&mut streamed, doc);
+        s.child(Rectangle::new().set("width", 4).set("fill", "#ffffff"))
+            .unwrap();
+        s.open(Definitions::new()).unwrap();
+        s.open(ClipPath::new().set("id", "c")).unwrap();
+        s.child(path("M0 0L1 1Z")).unwrap();
+        s.close().unwrap();
+        s.close().unwrap();
+        // Opened and closed with no child: self-closing, as the tree prints it.
+        s.open(Group::new().set("clip-path", "url(#c)")).unwrap();
+        s.close().unwrap();
+        s.open(Group::new()).unwrap();
+        s.child(path("M1 2L3 4Z")).unwrap();
+        s.child(path("M5 6L7 8Z")).unwrap();
+        s.close().unwrap();
+        s.child(Style::new(".a{fill:none} b > c & d")).unwrap();
+        s.finish().unwrap();
+        assert_eq!(String::from_utf8(streamed).unwrap(), format!("{tree}\n"));
+    }
+
+    #[test]
+    fn an_empty_document_is_self_closing() {
+        let doc = Document::new().set("width", 1);
+        let mut streamed = Vec::new();
+        SvgStream::new(&mut streamed, doc.clone()).finish().unwrap();
+        assert_eq!(String::from_utf8(streamed).unwrap(), format!("{doc}\n"));
+    }
+}
