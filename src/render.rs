@@ -23,7 +23,7 @@ use crate::progress::Report;
 use crate::project::ScreenScene;
 use crate::raster::lighting::{Lighting, Shading, Textures, shade_polys};
 use crate::raster::renderer::{Raster, RasterOptions};
-use crate::scene::{CameraLights, Scene, SceneLights};
+use crate::scene::{CameraLights, Material, Scene, SceneLights};
 use crate::visibility::VisibleSet;
 use std::io::{self, Write};
 use std::path::Path;
@@ -331,15 +331,21 @@ pub struct Rendered {
     /// applied or not read).
     pub warnings: Vec<String>,
     /// Seconds spent in each stage, in order: "visible set" or "image", then for drawings
-    /// "regions" (merge, seams, canonical form), then "lines" for SVG with hidden lines, or
-    /// "document" for JSON (its text; SVG is written as it is made, by [`Rendered::write`]).
+    /// "regions" (merge, seams, canonical form), then "lines" for SVG with hidden lines. SVG and
+    /// JSON are written as they are made, by [`Rendered::write`].
     pub stage_seconds: Vec<(&'static str, f64)>,
 }
 
 /// The bytes of a render, or what streams them.
 enum Body {
-    /// JSON text.
-    Text(String),
+    /// A drawing, written as JSON as it goes: the scene's materials and the method's counters.
+    Json(
+        Box<(
+            Drawing,
+            Vec<Material>,
+            serde_json::Map<String, serde_json::Value>,
+        )>,
+    ),
     /// A drawing, written as SVG element by element, with hidden lines over it if asked.
     Svg(Box<(Drawing, svg::SvgOptions, Option<LineDrawing>)>),
     /// A drawing, rasterized by strips as its PNG is written.
@@ -353,7 +359,10 @@ impl Rendered {
     /// drawing's is rasterized in strips of rows as it streams out).
     pub fn write(&self, out: &mut dyn Write) -> io::Result<()> {
         match &self.body {
-            Body::Text(text) => out.write_all(text.as_bytes()),
+            Body::Json(json) => {
+                let (drawing, materials, stats) = &**json;
+                json::write_json_to(out, drawing, materials, stats)
+            }
             Body::Svg(svg) => {
                 let (drawing, options, lines) = &**svg;
                 let line_options = LineSvgOptions::default();
@@ -486,13 +495,10 @@ pub fn render(
                 Output::Json => {
                     let mut stats = visible.stats;
                     stats.insert("method".into(), method.name.into());
-                    Body::Text(json::write_json(&drawing, scene, &stats))
+                    Body::Json(Box::new((drawing, scene.materials.clone(), stats)))
                 }
                 Output::Png => Body::Drawing(drawing),
             };
-            if options.format == Output::Json {
-                lap("document");
-            }
             (body, None)
         }
     };

@@ -42,7 +42,7 @@
 //! f64 (serde_json's); -0 is written as 0.
 
 use super::drawing::{DrawItem, Drawing};
-use crate::scene::{FaceId, Scene};
+use crate::scene::{FaceId, Material, Scene};
 use serde::Serialize;
 use serde_json::ser::{Formatter, PrettyFormatter};
 use std::collections::BTreeMap;
@@ -87,14 +87,17 @@ struct Region<'a>(&'a DrawItem);
 
 impl Serialize for Region<'_> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        // `x + 0.0` turns -0 into +0 and leaves every other value alone.
-        let rings: Vec<Vec<[f64; 2]>> = self
-            .0
-            .rings
-            .iter()
-            .map(|r| r.iter().map(|p| [p[0] + 0.0, p[1] + 0.0]).collect())
-            .collect();
-        rings.serialize(s)
+        s.collect_seq(self.0.rings.iter().map(|r| Ring(r)))
+    }
+}
+
+/// A ring's points, -0 written as 0 (`x + 0.0` turns -0 into +0 and leaves every other value
+/// alone), without copying the ring.
+struct Ring<'a>(&'a [[f64; 2]]);
+
+impl Serialize for Ring<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.0.iter().map(|p| [p[0] + 0.0, p[1] + 0.0]))
     }
 }
 
@@ -104,6 +107,20 @@ pub fn write_json(
     scene: &Scene,
     stats: &serde_json::Map<String, serde_json::Value>,
 ) -> String {
+    let mut out = Vec::new();
+    write_json_to(&mut out, drawing, &scene.materials, stats)
+        .expect("JSON of plain data into memory cannot fail");
+    String::from_utf8(out).expect("serde_json writes UTF-8")
+}
+
+/// Writes the JSON document of `drawing` to `out` as it goes (nothing of it is held in memory
+/// but the per-face index); `materials` are the scene's.
+pub fn write_json_to(
+    out: &mut dyn Write,
+    drawing: &Drawing,
+    materials: &[Material],
+    stats: &serde_json::Map<String, serde_json::Value>,
+) -> io::Result<()> {
     let mut by_face: BTreeMap<FaceId, Vec<usize>> = BTreeMap::new();
     for (k, it) in drawing.items.iter().enumerate() {
         by_face.entry(it.face).or_default().push(k);
@@ -112,7 +129,7 @@ pub fn write_json(
         .into_iter()
         .map(|(id, order)| {
             // The pieces of one face share its material; take the first item's.
-            let m = &scene.materials[drawing.items[order[0]].material as usize];
+            let m = &materials[drawing.items[order[0]].material as usize];
             FaceOut {
                 id,
                 material: MaterialOut {
@@ -135,22 +152,31 @@ pub fn write_json(
         faces,
         stats,
     };
-    pretty_inline(&doc, INLINE_DEPTH)
+    write_pretty_inline(out, &doc, INLINE_DEPTH)
 }
 
 /// `doc` as JSON in the layout of [`RingsInline`] with arrays `inline_depth` containers deep or
 /// more on one line, ending with a newline.
 pub(super) fn pretty_inline<T: Serialize>(doc: &T, inline_depth: usize) -> String {
     let mut out = Vec::new();
+    write_pretty_inline(&mut out, doc, inline_depth)
+        .expect("JSON of plain data into memory cannot fail");
+    String::from_utf8(out).expect("serde_json writes UTF-8")
+}
+
+/// [`pretty_inline`], written to `out` as it goes.
+fn write_pretty_inline<T: Serialize>(
+    out: &mut dyn Write,
+    doc: &T,
+    inline_depth: usize,
+) -> io::Result<()> {
     let formatter = RingsInline {
         inline_depth,
         ..RingsInline::default()
     };
-    let mut ser = serde_json::Serializer::with_formatter(&mut out, formatter);
-    doc.serialize(&mut ser)
-        .expect("JSON of plain data into memory cannot fail");
-    out.push(b'\n');
-    String::from_utf8(out).expect("serde_json writes UTF-8")
+    let mut ser = serde_json::Serializer::with_formatter(&mut *out, formatter);
+    doc.serialize(&mut ser).map_err(io::Error::other)?;
+    out.write_all(b"\n")
 }
 
 /// serde_json's pretty layout, except that an array nested `inline_depth` containers deep or
