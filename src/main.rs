@@ -333,12 +333,12 @@ struct InfoArgs {
 #[derive(Args)]
 struct BenchArgs {
     /// Scene file (omit with --sphere).
-    #[arg(required_unless_present_any = ["sphere", "soup", "tori", "suite"])]
+    #[arg(required_unless_present_any = ["sphere", "exported_sphere", "soup", "tori", "suite"])]
     input: Option<PathBuf>,
     /// Instead of one scene, a suite: every method of --methods on every scene at every size of
     /// --sizes, written to --out (fixtures: fixtures/, iso view or NAME.cam; generated: soups, tori, a
     /// sphere; meshes: ../shared/meshes/*.obj[.gz] with cams/NAME.cam).
-    #[arg(long, value_enum, conflicts_with_all = ["input", "sphere", "soup", "tori", "lines"], requires = "out")]
+    #[arg(long, value_enum, conflicts_with_all = ["input", "sphere", "exported_sphere", "soup", "tori", "lines"], requires = "out")]
     suite: Option<sightline::benchmark::Suite>,
     /// With --suite: `all`, or registered method names, comma-separated.
     #[arg(long, value_parser = parse_methods, default_value = "all", requires = "suite")]
@@ -365,8 +365,12 @@ struct BenchArgs {
     #[arg(long, value_enum)]
     format: Option<Format>,
     /// Instead of a file, a generated closed UV sphere of about this many triangles.
-    #[arg(long, value_name = "TRIANGLES", conflicts_with_all = ["input", "soup", "tori"], value_parser = parse_count, allow_negative_numbers = true)]
+    #[arg(long, value_name = "TRIANGLES", conflicts_with_all = ["input", "exported_sphere", "soup", "tori"], value_parser = parse_count, allow_negative_numbers = true)]
     sphere: Option<usize>,
+    /// Instead of a file, that sphere as many tools export it and `../shared/compare/scenes.py`
+    /// writes its benchmark spheres: without the pole fans (open) and wound inwards (inside out).
+    #[arg(long, value_name = "TRIANGLES", conflicts_with_all = ["input", "soup", "tori"], value_parser = parse_count, allow_negative_numbers = true)]
+    exported_sphere: Option<usize>,
     /// Instead of a file, this many random triangles in a unit cube (two-sided, interpenetrating).
     #[arg(long, value_name = "TRIANGLES", conflicts_with_all = ["input", "tori"], value_parser = parse_count, allow_negative_numbers = true)]
     soup: Option<usize>,
@@ -1038,14 +1042,22 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
             scene.expect("repeat >= 1")
         }
         (None, Some(n)) => scene::primitives::sphere_scene(n),
-        (None, None) => match (a.soup, a.tori) {
-            (Some(n), _) => scene::primitives::random_triangle_soup(n, 1),
-            (None, Some(n)) => scene::primitives::interlocked_tori(n, (n / 2).max(3)),
-            (None, None) => unreachable!("clap requires an input, --sphere, --soup or --tori"),
+        (None, None) => match (a.exported_sphere, a.soup, a.tori) {
+            (Some(n), _, _) => scene::primitives::exported_sphere_scene(n),
+            (None, Some(n), _) => scene::primitives::random_triangle_soup(n, 1),
+            (None, None, Some(n)) => scene::primitives::interlocked_tori(n, (n / 2).max(3)),
+            (None, None, None) => {
+                unreachable!(
+                    "clap requires an input, --sphere, --exported-sphere, --soup or --tori"
+                )
+            }
         },
     };
     let camera = camera_for(&a.camera, &scene)?;
     let (mut project_times, mut method_times) = (Vec::new(), Vec::new());
+    // Exact methods: the drawing after the visible set too, as `render -o x.svg` makes it.
+    let draws = a.method.outputs.contains(&Output::Svg);
+    let (mut region_times, mut write_times) = (Vec::new(), Vec::new());
     let mut report = String::new();
     let bar = progress_bar(repeat as u64, "bench");
     let mut screen_stats = None;
@@ -1053,10 +1065,28 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
         let t = Instant::now();
         let prepared = pipeline::prepare(&scene, &camera, a.camera.cull);
         project_times.push(t.elapsed().as_secs_f64());
-        let (seconds, computed) =
-            sightline::benchmark::timed_compute(a.method, &scene, &prepared.screen, &camera);
-        method_times.push(seconds);
-        report = computed.detail();
+        if draws {
+            let options = RenderOptions::new(Output::Svg).with_method(a.method);
+            let rendered = render::render(&scene, &camera, &prepared.screen, &options, None)?;
+            let stage = |name: &str| {
+                (rendered.stage_seconds.iter())
+                    .find(|(n, _)| *n == name)
+                    .map_or(0.0, |(_, t)| *t)
+            };
+            method_times.push(stage("visible set"));
+            region_times.push(stage("regions"));
+            let t = Instant::now();
+            rendered
+                .write(&mut std::io::sink())
+                .expect("writing to nowhere cannot fail");
+            write_times.push(t.elapsed().as_secs_f64());
+            report = rendered.detail;
+        } else {
+            let (seconds, computed) =
+                sightline::benchmark::timed_compute(a.method, &scene, &prepared.screen, &camera);
+            method_times.push(seconds);
+            report = computed.detail();
+        }
         screen_stats = Some(prepared.screen.stats);
         bar.set_position(k as u64 + 1);
     }
@@ -1091,11 +1121,35 @@ fn bench(a: BenchArgs) -> sightline::Result<()> {
         tm,
         tris as f64 / tm
     );
+    let mut total = tp + tm;
+    if draws {
+        let (tr, tw) = (median(region_times), median(write_times));
+        println!(
+            "  regions          {tr:9.4} s  {:12.0} triangles/s  (merge, seams, canonical form)",
+            tris as f64 / tr
+        );
+        println!(
+            "  SVG              {tw:9.4} s  {:12.0} triangles/s  (written to nowhere)",
+            tris as f64 / tw
+        );
+        println!(
+            "  after the visible set: {:.0} % of it",
+            100.0 * (tr + tw) / tm
+        );
+        total += tr + tw;
+    }
     println!(
         "  total            {:9.4} s  {:12.0} triangles/s",
-        tp + tm,
-        tris as f64 / (tp + tm)
+        total,
+        tris as f64 / total
     );
+    if let Some(kb) = sightline::benchmark::peak_rss_kb() {
+        println!(
+            "  peak memory      {:9.1} MB  {:12.0} bytes/triangle",
+            kb as f64 / 1024.0,
+            kb as f64 * 1024.0 / tris.max(1) as f64
+        );
+    }
     println!(
         "  on screen {} (back faces culled {}, frustum culled {}); {}",
         st.visible_polys, st.backface_culled, st.frustum_culled, report
