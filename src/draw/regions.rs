@@ -37,8 +37,9 @@ use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
 use crate::visibility::coverage::bounds;
-use crate::visibility::grid::for_each_near;
+use crate::visibility::grid::{BoxGrid, for_each_near};
 use bnum::cast::As;
+use rustc_hash::FxHashMap;
 
 /// The unsigned counterpart of [`Wide`].
 type WideUnsigned = bnum::Uint<96>;
@@ -182,39 +183,96 @@ pub struct Vertices {
 /// Every piece's vertices named and rounded once (see [`Vertices`]): each exact point, the
 /// first time a piece has it, gets a new id and its pixel coordinates ([`vertex_pixel`]); a
 /// later piece with the same point (decided exactly) takes both.
+///
+/// Most vertices are grid points (input corners, and crossings that land on one): they are
+/// named by their integer coordinates in a hash map, without looking at any other piece. A
+/// vertex that is not known to be a corner is compared exactly with the vertices of the earlier
+/// pieces whose boxes meet its piece's, and, if it turns out to be a grid point, with the map,
+/// where it is entered when it is new: so a crossing and a corner at the same point share an
+/// id whichever comes first.
 pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
     let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
+    let mut grid = BoxGrid::holding(&boxes);
+    let mut near: Vec<u32> = Vec::new();
+    let mut at_grid_point: FxHashMap<[i64; 2], ([f64; 2], u32)> = FxHashMap::default();
     let mut out = Vertices {
         pixels: Vec::with_capacity(pieces.len()),
         ids: Vec::with_capacity(pieces.len()),
     };
     let mut next = 0u32;
-    for_each_near(
-        &boxes,
-        |_| true,
-        |a, near| {
-            let pa = &pieces[a];
-            let (mut pixels, mut ids) =
-                (Vec::with_capacity(pa.len()), Vec::with_capacity(pa.len()));
-            for k in 0..pa.len() {
-                // Earlier pieces already named every point they share with this one.
-                let known = near.iter().take_while(|&&b| b < a).find_map(|&b| {
-                    (0..pieces[b].len())
-                        .find(|&v| pa.same_vertex(k, &pieces[b], v))
-                        .map(|v| (out.pixels[b][v], out.ids[b][v]))
-                });
-                let (p, id) = known.unwrap_or_else(|| {
-                    next += 1;
-                    (vertex_pixel(pa, k, s), next - 1)
-                });
-                pixels.push(p);
-                ids.push(id);
-            }
-            out.pixels.push(pixels);
-            out.ids.push(ids);
-        },
-    );
+    for (a, pa) in pieces.iter().enumerate() {
+        let (mut pixels, mut ids) = (Vec::with_capacity(pa.len()), Vec::with_capacity(pa.len()));
+        let mut near_known = false;
+        for k in 0..pa.len() {
+            let (known, grid_point) = match pa.corners[k] {
+                Some(g) => (at_grid_point.get(&g).copied(), Some(g)),
+                None => {
+                    if !near_known {
+                        // Earlier pieces whose closed boxes meet this one's.
+                        let ba = &boxes[a];
+                        grid.entries_near(ba, &mut near);
+                        near.retain(|&b| {
+                            let bb = &boxes[b as usize];
+                            (b as usize) < a
+                                && ba[0] <= bb[2]
+                                && bb[0] <= ba[2]
+                                && ba[1] <= bb[3]
+                                && bb[1] <= ba[3]
+                        });
+                        near_known = true;
+                    }
+                    let earlier = near.iter().find_map(|&b| {
+                        let b = b as usize;
+                        (0..pieces[b].len())
+                            .find(|&v| pa.same_vertex(k, &pieces[b], v))
+                            .map(|v| (out.pixels[b][v], out.ids[b][v]))
+                    });
+                    match earlier {
+                        Some(named) => (Some(named), None),
+                        None => {
+                            let g = grid_point_of(pa, k);
+                            (g.and_then(|g| at_grid_point.get(&g).copied()), g)
+                        }
+                    }
+                }
+            };
+            let (p, id) = known.unwrap_or_else(|| {
+                next += 1;
+                let named = (vertex_pixel(pa, k, s), next - 1);
+                if let Some(g) = grid_point {
+                    at_grid_point.insert(g, named);
+                }
+                named
+            });
+            pixels.push(p);
+            ids.push(id);
+        }
+        out.pixels.push(pixels);
+        out.ids.push(ids);
+    }
     out
+}
+
+/// Vertex k of `p` (not a corner) as a grid point, if it is one (decided exactly): the only
+/// grid point its error bound allows (the exactly rounded crossing when the bound is half a
+/// unit or more), tested on both its lines.
+fn grid_point_of(p: &Piece, k: usize) -> Option<[i64; 2]> {
+    let [x, y, e] = p.points[k];
+    let n = p.len();
+    let (l, m) = (&p.lines[(k + n - 1) % n], &p.lines[k]);
+    // Within e < 1/2 of (x, y) lies one grid point at most, the nearest; else round exactly.
+    let [x, y] = if e < 0.5 {
+        [x.round(), y.round()]
+    } else {
+        exact_crossing(l, m)?
+    };
+    let limit = crate::exact::GRID_MAX as f64;
+    if x.fract() != 0.0 || y.fract() != 0.0 || x.abs() > limit || y.abs() > limit {
+        return None;
+    }
+    let (gx, gy) = (x as i64, y as i64);
+    (l.sign_at_grid(gx, gy) == Ordering::Equal && m.sign_at_grid(gx, gy) == Ordering::Equal)
+        .then_some([gx, gy])
 }
 
 /// Vertex k of `p` in pixels: its exact grid coordinates correctly rounded to f64 (to nearest,
@@ -983,6 +1041,43 @@ pub(super) mod tests {
                 .iter()
                 .all(|p| *p == [s.col_of(third), s.row_of(third)])
         );
+    }
+
+    #[test]
+    fn a_crossing_on_a_grid_point_shares_the_id_of_the_corner_there_whichever_comes_first() {
+        // The planes z = y and z = 5 meet above the line y = 5: a cut line, so the square's
+        // vertices on it are crossings, not corners, though they are grid points.
+        let g = |x, y, z| GridPoint { x, y, z };
+        let p = Plane::of_polygon(&[g(0, 0, 0), g(10, 0, 0), g(0, 10, 10)]).unwrap();
+        let q = Plane::of_polygon(&[g(0, 0, 5), g(10, 0, 5), g(0, 10, 5)]).unwrap();
+        let Split::Both(below, above) =
+            rect(0, [0, 0, 10, 10]).split_by_line(&Line::cut(p, q), Boundary::ScreenSplit)
+        else {
+            panic!("the line y = 5 splits the square");
+        };
+        let at = |pc: &Piece, x: f64, y: f64| {
+            (0..pc.len())
+                .find(|&k| pc.vertex_f64(k) == [x, y])
+                .expect("a vertex there")
+        };
+        assert!(below.corners[at(&below, 0.0, 5.0)].is_none());
+        // A rectangle to the left with a corner at (0, 5).
+        let left = rect(1, [-10, 0, 0, 5]);
+        for pieces in [
+            vec![below.clone(), above.clone(), left.clone()],
+            vec![left.clone(), below.clone(), above.clone()],
+        ] {
+            let v = shared_vertices(&pieces, &grid_samples());
+            let ids: Vec<u32> = pieces
+                .iter()
+                .enumerate()
+                .map(|(i, pc)| v.ids[i][at(pc, 0.0, 5.0)])
+                .collect();
+            assert!(ids.iter().all(|&id| id == ids[0]), "{ids:?}");
+            // So the three merge into one region, with a corner there.
+            let corners = [[-10, 0], [10, 0], [10, 10], [0, 10], [0, 5], [-10, 5]];
+            assert_eq!(rings(&pieces), region(&[&corners]));
+        }
     }
 
     #[test]
