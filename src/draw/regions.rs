@@ -83,17 +83,17 @@ pub fn regions_of<K: Ord>(
 ) -> Vec<Region> {
     let mut ticker = Ticker::new(report, "regions", pieces.len() as u64);
     let mut merged_pieces = 0;
-    let mut groups: BTreeMap<K, Vec<usize>> = BTreeMap::new();
-    for (i, p) in pieces.iter().enumerate() {
-        groups.entry(key(p)).or_default().push(i);
-    }
+    // The pieces in group order (key, then index): each group a run of them.
+    let keys: Vec<K> = pieces.iter().map(key).collect();
+    let mut order: Vec<usize> = (0..pieces.len()).collect();
+    order.sort_by(|&a, &b| keys[a].cmp(&keys[b]).then(a.cmp(&b)));
     let face_of = |i: usize| screen.polys[pieces[i].poly as usize].id;
     let mut out = Vec::new();
-    for members in groups.into_values() {
+    for members in order.chunk_by(|&a, &b| keys[a] == keys[b]) {
         // The pieces of the groups before this one are merged.
         ticker.tick(merged_pieces);
         merged_pieces += members.len() as u64;
-        for m in merge(pieces, vertices, &members) {
+        for m in merge(pieces, vertices, members) {
             let mut faces: Vec<FaceId> = m.members.iter().map(|&i| face_of(i)).collect();
             faces.sort_unstable();
             faces.dedup();

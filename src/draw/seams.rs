@@ -16,8 +16,8 @@ use super::regions::{UnionFind, Vertices};
 use crate::exact::polygon::Piece;
 use crate::visibility::coverage::bounds;
 use crate::visibility::grid::for_each_near;
+use rustc_hash::FxHashMap;
 use std::cmp::Ordering;
-use std::collections::HashMap;
 
 /// One shared boundary segment.
 #[derive(Clone, Debug, PartialEq)]
@@ -55,8 +55,8 @@ pub fn shared_edges(
         let v = &ids[a];
         (v[k], v[(k + 1) % v.len()])
     };
-    let mut edges: HashMap<(u32, u32), (usize, usize)> =
-        HashMap::with_capacity(ids.iter().map(Vec::len).sum());
+    let mut edges: FxHashMap<(u32, u32), (usize, usize)> = FxHashMap::default();
+    edges.reserve(ids.iter().map(Vec::len).sum());
     for (a, v) in ids.iter().enumerate() {
         for k in 0..v.len() {
             edges.insert(ends(a, k), (a, k));
