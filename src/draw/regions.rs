@@ -122,7 +122,7 @@ pub fn regions_of<K: Ord>(
 /// where, only which abutting regions of the same paint share a path. It is not exact
 /// coplanarity on purpose: CAD files written as decimals put the triangles of one flat face a
 /// rounding error off each other's plane, and their seams would show.
-pub fn surfaces<P: Ord>(
+pub fn surfaces<P: Eq + std::hash::Hash>(
     scene: &Scene,
     screen: &ScreenScene,
     eye: DVec3,
@@ -134,7 +134,7 @@ pub fn surfaces<P: Ord>(
         .filter(|s| *s > 0.0)
         .unwrap_or(1.0);
     let q = |v: f64| (v * (1u64 << 20) as f64).round() as i64;
-    let mut buckets: BTreeMap<(P, [i64; 4]), u32> = BTreeMap::new();
+    let mut buckets: FxHashMap<(P, [i64; 4]), u32> = FxHashMap::default();
     let mut labels = Vec::with_capacity(screen.polys.len());
     let mut next = 0u32;
     for (index, poly) in screen.polys.iter().enumerate() {
