@@ -141,10 +141,19 @@ fn write_seams(s: &mut SvgStream, seams: &Seams) -> std::io::Result<()> {
     for stroke in &seams.strokes {
         let mut d = String::new();
         for [p, q] in &stroke.segments {
-            let (p, q) = (p.map(milli), q.map(milli));
+            let start = d.len();
+            d.push('M');
+            push_milli(&mut d, p[0]);
+            d.push(' ');
+            push_milli(&mut d, p[1]);
+            let mid = d.len();
+            d.push('L');
+            push_milli(&mut d, q[0]);
+            d.push(' ');
+            push_milli(&mut d, q[1]);
             // Shorter than the rounding: a butt-ended stroke of no length draws nothing.
-            if p != q {
-                let _ = write!(d, "M{} {}L{} {}", p[0], p[1], q[0], q[1]);
+            if d[start + 1..mid] == d[mid + 1..] {
+                d.truncate(start);
             }
         }
         // vector-effect is not inherited: it goes on every path.
@@ -180,16 +189,17 @@ fn push_num(d: &mut String, x: f64) {
     let _ = write!(d, "{}", x + 0.0);
 }
 
-/// [`milli`], written into `d`.
+/// `x` to three decimals, without trailing zeros (-0 written as 0), written into `d` after
+/// what it holds.
 fn push_milli(d: &mut String, x: f64) {
-    d.push_str(&milli(x));
-}
-
-/// `x` to three decimals, without trailing zeros.
-fn milli(x: f64) -> String {
-    let s = format!("{:.3}", x + 0.0);
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" { "0".into() } else { s.into() }
+    let start = d.len();
+    let _ = write!(d, "{:.3}", x + 0.0);
+    let kept = d[start..].trim_end_matches('0').trim_end_matches('.').len();
+    d.truncate(start + kept);
+    if &d[start..] == "-0" {
+        d.truncate(start);
+        d.push('0');
+    }
 }
 
 /// Shortest round-trip decimal of `x`, with -0 written as 0 (`-0 + 0 = +0`).
@@ -215,6 +225,21 @@ mod tests {
         }
         assert_eq!(num(-0.0), "0");
         assert_eq!(num(0.30000000000000004), "0.30000000000000004");
+    }
+
+    #[test]
+    fn thousandths_drop_trailing_zeros_and_negative_zero() {
+        let milli = |x: f64| {
+            let mut d = String::from("M");
+            push_milli(&mut d, x);
+            d
+        };
+        assert_eq!(milli(1.5), "M1.5");
+        assert_eq!(milli(2.0), "M2");
+        assert_eq!(milli(10.0004), "M10");
+        assert_eq!(milli(-0.0004), "M0");
+        assert_eq!(milli(-1.2345), "M-1.234");
+        assert_eq!(milli(100.0), "M100");
     }
 
     #[test]
