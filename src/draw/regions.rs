@@ -221,13 +221,13 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
 /// ties to even), then mapped to pixels. A function of the exact point only, whichever two
 /// lines name it.
 pub fn vertex_pixel(p: &Piece, k: usize, s: &Samples) -> [f64; 2] {
-    let [x, y, e] = p.points[k];
+    let [x, y, e] = p.point(k);
     // A zero error bound: the point is exact (a grid corner).
     let [x, y] = if e == 0.0 {
         [x, y]
     } else {
         let n = p.len();
-        exact_crossing(&p.lines[(k + n - 1) % n], &p.lines[k]).unwrap_or([x, y])
+        exact_crossing(p.line((k + n - 1) % n), p.line(k)).unwrap_or([x, y])
     };
     [s.col_of(x), s.row_of(y)]
 }
@@ -386,7 +386,7 @@ impl Group<'_> {
     fn side(&self, at: At, (piece, line): (usize, usize)) -> Ordering {
         let p = &self.pieces[piece];
         self.piece(at)
-            .vertex_line_sign_with(at.vertex, &p.lines[line], &p.line_approx[line])
+            .vertex_line_sign_with(at.vertex, p.line(line), p.line_approx(line))
     }
 
     /// Of the two lines of `x`'s piece through `x`, one that `other` (another point) is not on,
@@ -475,7 +475,7 @@ impl Group<'_> {
     /// strictly inside its other lines), each point once, in order from the edge's start.
     fn inside_edge(&self, i: usize, k: usize, near: &[usize]) -> Vec<At> {
         let pa = &self.pieces[self.members[i]];
-        let (line, approx) = (&pa.lines[k], &pa.line_approx[k]);
+        let (line, approx) = (pa.line(k), pa.line_approx(k));
         let start = At {
             piece: self.members[i],
             vertex: k,
@@ -488,12 +488,9 @@ impl Group<'_> {
                 if pb.vertex_line_sign_with(v, line, approx) != Ordering::Equal {
                     continue;
                 }
-                let strictly_inside =
-                    (pa.lines.iter().zip(&pa.line_approx))
-                        .enumerate()
-                        .all(|(l, (m, ma))| {
-                            l == k || pb.vertex_line_sign_with(v, m, ma) == Ordering::Greater
-                        });
+                let strictly_inside = pa.lines_with_approx().enumerate().all(|(l, (m, ma))| {
+                    l == k || pb.vertex_line_sign_with(v, m, ma) == Ordering::Greater
+                });
                 if strictly_inside {
                     let at = At {
                         piece: b,
@@ -826,7 +823,7 @@ pub(super) mod tests {
     fn cut(pieces: Vec<Piece>, cuts: &[[[i64; 2]; 2]]) -> Vec<Piece> {
         let g = |[x, y]: [i64; 2]| GridPoint { x, y, z: 0 };
         cuts.iter().fold(pieces, |pieces, &[a, b]| {
-            let l = Line::Edge(Plane::edge(g(a), g(b)).unwrap());
+            let l = Line::edge(g(a), g(b)).unwrap();
             pieces
                 .into_iter()
                 .flat_map(|p| match p.split_by_line(&l, Boundary::ScreenSplit) {
@@ -943,7 +940,7 @@ pub(super) mod tests {
         // Three lines through (10/3, 10/3): y = x, x + 2y = 10 and 2x + y = 10.
         let line = |a: [i64; 2], b: [i64; 2]| {
             let g = |[x, y]: [i64; 2]| GridPoint { x, y, z: 0 };
-            Line::Edge(Plane::edge(g(a), g(b)).unwrap())
+            Line::edge(g(a), g(b)).unwrap()
         };
         let lines = [
             line([0, 0], [1, 1]),

@@ -103,7 +103,7 @@ fn score(splitter: &Splitter, sample: &[&Piece]) -> i64 {
 /// The vertical line x = m (or y = m), positive on the larger side.
 fn screen_line(axis: usize, m: i64) -> Line {
     let (a, b) = if axis == 0 { (1, 0) } else { (0, 1) };
-    Line::Edge(Plane {
+    Line::vertical(&Plane {
         a,
         b,
         c: 0,
