@@ -249,6 +249,9 @@ impl Bsp {
             // Coplanar pieces that overlap resolve by the tie rule; in a separated bag the order
             // is free, and the same key keeps it deterministic.
             on.sort_by_key(|p| tie_key(screen, p));
+            // The node keeps its pieces for the whole walk: no spare room (a vector of pieces
+            // grows by doubling from four, and a piece is a few hundred bytes inline).
+            on.shrink_to_fit();
             stats.fragments += on.len();
             stats.depth = stats.depth.max(depth);
             let index = nodes.len() as u32;
