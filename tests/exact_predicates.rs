@@ -37,7 +37,19 @@ fn coeffs(p: &Plane) -> [Q; 4] {
 /// (a, b, d) of a line, exactly.
 fn line_coeffs(l: &Line) -> [Q; 3] {
     match l {
-        Line::Edge(p) => [q(p.a), q(p.b), qw(p.d)],
+        // An edge through (px, py) -> (qx, qy): a = py - qy, b = qx - px, d = -(a·px + b·py).
+        Line::Edge([[px, py], [qx, qy]]) => {
+            let (a, b) = (
+                q(*py as i128) - q(*qy as i128),
+                q(*qx as i128) - q(*px as i128),
+            );
+            let d = -(&a * q(*px as i128) + &b * q(*py as i128));
+            [a, b, d]
+        }
+        Line::Vertical(_) => {
+            let p = l.vertical_plane().expect("a vertical line");
+            [q(p.a), q(p.b), qw(p.d)]
+        }
         Line::Cut(p, r) => {
             let [pa, pb, pc, pd] = coeffs(p);
             let [ra, rb, rc, rd] = coeffs(r);
@@ -171,7 +183,7 @@ proptest! {
     #[test]
     fn line_side_random(a in any_plane(), b in any_plane(), c in any_plane(), d in any_plane(), e in any_plane(), f in any_plane()) {
         // Mix edge lines and cut lines (a cut needs two planes, one at least not vertical).
-        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::cut(p, r) };
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::vertical(&p) } else { Line::cut(p, r) };
         let (l0, l1, l2) = (line(a, b), line(c, d), line(e, f));
         prop_assert_eq!(line_side([&l0, &l1], &l2), line_reference([&l0, &l1], &l2));
     }
@@ -180,7 +192,7 @@ proptest! {
     fn line_side_through_a_common_point(
         (a, b, c, d, e, f) in point().prop_flat_map(|g| (plane_through(g), plane_through(g), plane_through(g), plane_through(g), plane_through(g), query_near(g)))
     ) {
-        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::cut(p, r) };
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::vertical(&p) } else { Line::cut(p, r) };
         let (l0, l1, l2) = (line(a, b), line(c, d), line(e, f));
         prop_assert_eq!(line_side([&l0, &l1], &l2), line_reference([&l0, &l1], &l2));
     }
@@ -188,7 +200,7 @@ proptest! {
     #[test]
     fn depth_order_random(a in any_plane(), b in any_plane(), c in any_plane(), d in any_plane(), s in any_plane(), t in any_plane()) {
         let (Some(s), Some(t)) = (support(s), support(t)) else { return Ok(()); };
-        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::cut(p, r) };
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::vertical(&p) } else { Line::cut(p, r) };
         let (l0, l1) = (line(a, b), line(c, d));
         prop_assert_eq!(depth_order_at([&l0, &l1], &s, &t), depth_reference([&l0, &l1], &s, &t));
     }
@@ -200,7 +212,7 @@ proptest! {
         // s and t both pass through g; the crossing of the lines is g's (x, y) when both lines
         // pass through g too: the depths tie exactly there.
         let (Some(s), Some(t)) = (support(s), support(t)) else { return Ok(()); };
-        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::cut(p, r) };
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::vertical(&p) } else { Line::cut(p, r) };
         let (l0, l1) = (line(a, b), line(u, s));
         prop_assert_eq!(depth_order_at([&l0, &l1], &s, &t), depth_reference([&l0, &l1], &s, &t));
     }
@@ -276,7 +288,7 @@ proptest! {
 
     #[test]
     fn point_filter_random(a in any_plane(), b in any_plane(), c in any_plane(), d in any_plane(), e in any_plane(), f in any_plane()) {
-        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::cut(p, r) };
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::vertical(&p) } else { Line::cut(p, r) };
         check_point_filter(&line(a, b), &line(c, d), &line(e, f))?;
     }
 
@@ -286,7 +298,7 @@ proptest! {
     ) {
         // The third line passes through the crossing or one unit off it: the filter must
         // abstain or be right.
-        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::Edge(p) } else { Line::cut(p, r) };
+        let line = |p: Plane, r: Plane| if p.c == 0 && r.c == 0 { Line::vertical(&p) } else { Line::cut(p, r) };
         check_point_filter(&line(a, b), &line(c, d), &line(e, f))?;
     }
 }
@@ -348,12 +360,12 @@ fn piece_sign_shortcuts_agree_with_the_reference() {
         let (visible, _) = coverage_map(&screen);
         let pieces = &visible.pieces;
         // Every line and plane the visible pieces are made of, tried at every vertex.
-        let lines: Vec<Line> = pieces.iter().flat_map(|p| p.lines.clone()).collect();
+        let lines: Vec<Line> = pieces.iter().flat_map(|p| p.lines().cloned()).collect();
         let planes: Vec<std::sync::Arc<Plane>> = pieces.iter().map(|p| p.support.clone()).collect();
         for (i, p) in pieces.iter().enumerate() {
-            let n = p.lines.len();
+            let n = p.len();
             for k in 0..n {
-                let m = [&p.lines[(k + n - 1) % n], &p.lines[k]];
+                let m = [p.line((k + n - 1) % n), p.line(k)];
                 for l in lines.iter().skip(i % 29).step_by(29) {
                     let want = line_reference(m, l).expect("adjacent lines cross");
                     zeros += (want == Ordering::Equal) as usize;
@@ -387,7 +399,7 @@ fn crossing_f64_of_nearly_parallel_lines_is_finite() {
     use sightline::exact::predicates::crossing_f64;
     let big = 1i64 << 60;
     let edge = |a: i64, b: i64, d: i128| {
-        Line::Edge(Plane {
+        Line::vertical(&Plane {
             a: a as i128,
             b: b as i128,
             c: 0,

@@ -24,14 +24,15 @@ fn is_edge_through(
     let Some(e) = Plane::edge(*p, *q) else {
         return false;
     };
-    matches!(l, Line::Edge(f) if *f == e || *f == e.negated())
+    l.vertical_plane()
+        .is_some_and(|f| f == e || f == e.negated())
 }
 
 /// Checks one piece's boundaries against its lines; counts each kind seen.
 fn check_piece(screen: &ScreenScene, piece: &Piece, seen: &mut [usize; 4]) {
-    assert_eq!(piece.lines.len(), piece.boundaries.len());
-    for (line, boundary) in piece.lines.iter().zip(&piece.boundaries) {
-        match *boundary {
+    assert_eq!(piece.lines().len(), piece.boundaries().len());
+    for (line, boundary) in piece.lines().zip(piece.boundaries()) {
+        match boundary {
             Boundary::Outline { poly, side } => {
                 let c = screen.corners(&screen.polys[poly as usize]);
                 let (p, q) = (c[side as usize], c[(side as usize + 1) % c.len()]);
@@ -62,7 +63,8 @@ fn check_piece(screen: &ScreenScene, piece: &Piece, seen: &mut [usize; 4]) {
             }
             Boundary::ScreenSplit => {
                 assert!(
-                    matches!(line, Line::Edge(e) if e.c == 0 && (e.a == 0 || e.b == 0)),
+                    line.vertical_plane()
+                        .is_some_and(|e| e.c == 0 && (e.a == 0 || e.b == 0)),
                     "{line:?} is not a vertical or horizontal screen line"
                 );
                 seen[3] += 1;
@@ -279,7 +281,7 @@ fn outline_sides_do_not_run_on_into_diagonals() {
     for piece in &visible.pieces {
         let m = piece.len();
         for k in 0..m {
-            let Boundary::Outline { side, .. } = piece.boundaries[k] else {
+            let Boundary::Outline { side, .. } = piece.boundary(k) else {
                 continue;
             };
             outline_sides += 1;
@@ -293,7 +295,7 @@ fn outline_sides_do_not_run_on_into_diagonals() {
             }
             let (p, q) = (c[side], c[last]);
             // The piece side runs from vertex k to vertex k + 1 (grid corners here: one face).
-            for end in [piece.corners[k], piece.corners[(k + 1) % m]] {
+            for end in [piece.corner(k), piece.corner((k + 1) % m)] {
                 let [x, y] = end.expect("a lone face's piece has grid corners");
                 let within = (p.x.min(q.x)..=p.x.max(q.x)).contains(&x)
                     && (p.y.min(q.y)..=p.y.max(q.y)).contains(&y);

@@ -204,7 +204,7 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
         let (mut pixels, mut ids) = (Vec::with_capacity(pa.len()), Vec::with_capacity(pa.len()));
         let mut near_known = false;
         for k in 0..pa.len() {
-            let (known, grid_point) = match pa.corners[k] {
+            let (known, grid_point) = match pa.corner(k) {
                 Some(g) => (at_grid_point.get(&g).copied(), Some(g)),
                 None => {
                     if !near_known {
@@ -257,9 +257,9 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
 /// grid point its error bound allows (the exactly rounded crossing when the bound is half a
 /// unit or more), tested on both its lines.
 fn grid_point_of(p: &Piece, k: usize) -> Option<[i64; 2]> {
-    let [x, y, e] = p.points[k];
+    let [x, y, e] = p.point(k);
     let n = p.len();
-    let (l, m) = (&p.lines[(k + n - 1) % n], &p.lines[k]);
+    let (l, m) = (p.line((k + n - 1) % n), p.line(k));
     // Within e < 1/2 of (x, y) lies one grid point at most, the nearest; else round exactly.
     let [x, y] = if e < 0.5 {
         [x.round(), y.round()]
@@ -279,13 +279,13 @@ fn grid_point_of(p: &Piece, k: usize) -> Option<[i64; 2]> {
 /// ties to even), then mapped to pixels. A function of the exact point only, whichever two
 /// lines name it.
 pub fn vertex_pixel(p: &Piece, k: usize, s: &Samples) -> [f64; 2] {
-    let [x, y, e] = p.points[k];
+    let [x, y, e] = p.point(k);
     // A zero error bound: the point is exact (a grid corner).
     let [x, y] = if e == 0.0 {
         [x, y]
     } else {
         let n = p.len();
-        exact_crossing(&p.lines[(k + n - 1) % n], &p.lines[k]).unwrap_or([x, y])
+        exact_crossing(p.line((k + n - 1) % n), p.line(k)).unwrap_or([x, y])
     };
     [s.col_of(x), s.row_of(y)]
 }
@@ -444,7 +444,7 @@ impl Group<'_> {
     fn side(&self, at: At, (piece, line): (usize, usize)) -> Ordering {
         let p = &self.pieces[piece];
         self.piece(at)
-            .vertex_line_sign_with(at.vertex, &p.lines[line], &p.line_approx[line])
+            .vertex_line_sign_with(at.vertex, p.line(line), p.line_approx(line))
     }
 
     /// Of the two lines of `x`'s piece through `x`, one that `other` (another point) is not on,
@@ -533,7 +533,7 @@ impl Group<'_> {
     /// strictly inside its other lines), each point once, in order from the edge's start.
     fn inside_edge(&self, i: usize, k: usize, near: &[usize]) -> Vec<At> {
         let pa = &self.pieces[self.members[i]];
-        let (line, approx) = (&pa.lines[k], &pa.line_approx[k]);
+        let (line, approx) = (pa.line(k), pa.line_approx(k));
         let start = At {
             piece: self.members[i],
             vertex: k,
@@ -546,12 +546,9 @@ impl Group<'_> {
                 if pb.vertex_line_sign_with(v, line, approx) != Ordering::Equal {
                     continue;
                 }
-                let strictly_inside =
-                    (pa.lines.iter().zip(&pa.line_approx))
-                        .enumerate()
-                        .all(|(l, (m, ma))| {
-                            l == k || pb.vertex_line_sign_with(v, m, ma) == Ordering::Greater
-                        });
+                let strictly_inside = pa.lines_with_approx().enumerate().all(|(l, (m, ma))| {
+                    l == k || pb.vertex_line_sign_with(v, m, ma) == Ordering::Greater
+                });
                 if strictly_inside {
                     let at = At {
                         piece: b,
@@ -884,7 +881,7 @@ pub(super) mod tests {
     fn cut(pieces: Vec<Piece>, cuts: &[[[i64; 2]; 2]]) -> Vec<Piece> {
         let g = |[x, y]: [i64; 2]| GridPoint { x, y, z: 0 };
         cuts.iter().fold(pieces, |pieces, &[a, b]| {
-            let l = Line::Edge(Plane::edge(g(a), g(b)).unwrap());
+            let l = Line::edge(g(a), g(b)).unwrap();
             pieces
                 .into_iter()
                 .flat_map(|p| match p.split_by_line(&l, Boundary::ScreenSplit) {
@@ -1001,7 +998,7 @@ pub(super) mod tests {
         // Three lines through (10/3, 10/3): y = x, x + 2y = 10 and 2x + y = 10.
         let line = |a: [i64; 2], b: [i64; 2]| {
             let g = |[x, y]: [i64; 2]| GridPoint { x, y, z: 0 };
-            Line::Edge(Plane::edge(g(a), g(b)).unwrap())
+            Line::edge(g(a), g(b)).unwrap()
         };
         let lines = [
             line([0, 0], [1, 1]),
@@ -1060,7 +1057,7 @@ pub(super) mod tests {
                 .find(|&k| pc.vertex_f64(k) == [x, y])
                 .expect("a vertex there")
         };
-        assert!(below.corners[at(&below, 0.0, 5.0)].is_none());
+        assert!(below.corner(at(&below, 0.0, 5.0)).is_none());
         // A rectangle to the left with a corner at (0, 5).
         let left = rect(1, [-10, 0, 0, 5]);
         for pieces in [

@@ -133,7 +133,7 @@ pub fn straight_runs(
             for &(_, t, end) in &meeting[i + 1..] {
                 let (lp, l) = edges[s].line;
                 let (fp, fv) = edges[t].vertices[1 - end];
-                let (line, approx) = (&pieces[lp].lines[l], &pieces[lp].line_approx[l]);
+                let (line, approx) = (pieces[lp].line(l), pieces[lp].line_approx(l));
                 if pieces[fp].vertex_line_sign_with(fv, line, approx) == Ordering::Equal {
                     runs.union(s, t);
                 }
@@ -196,7 +196,7 @@ fn shared_part(
     b_whole: &[bool],
 ) -> Option<[(usize, usize); 2]> {
     let (na, nb) = (a.len(), b.len());
-    let (line, approx) = (&a.lines[k], &a.line_approx[k]);
+    let (line, approx) = (a.line(k), a.line_approx(k));
     // An edge j of b on a's line k: both of its ends on that line (a strictly convex piece has
     // at most one edge on a line).
     let on: Vec<bool> = (0..nb)
@@ -207,7 +207,7 @@ fn shared_part(
     // other piece (closed); an end of b that is an end of a (decided exactly) counts once.
     // Edges with both pieces on one side of the line meet at most at a point: no segment.
     let in_closed = |p: &Piece, v: usize, q: &Piece| {
-        (q.lines.iter().zip(&q.line_approx))
+        q.lines_with_approx()
             .all(|(l, la)| p.vertex_line_sign_with(v, l, la) != Ordering::Less)
     };
     let from_a: Vec<usize> = [k, (k + 1) % na]

@@ -391,7 +391,7 @@ impl Samples {
 
     /// Sample column i as the exact line `W·x - x_num = 0` (for [`predicates::line_side`]).
     pub fn column_line(&self, i: i64) -> predicates::Line {
-        predicates::Line::Edge(Plane {
+        predicates::Line::vertical(&Plane {
             a: self.width as i128,
             b: 0,
             c: 0,
@@ -401,7 +401,7 @@ impl Samples {
 
     /// Sample row j as the exact line `H·y - y_num = 0`.
     pub fn row_line(&self, j: i64) -> predicates::Line {
-        predicates::Line::Edge(Plane {
+        predicates::Line::vertical(&Plane {
             a: 0,
             b: self.height as i128,
             c: 0,

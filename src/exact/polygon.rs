@@ -23,6 +23,7 @@ use super::predicates::{
     line_side, line_side_filtered, meet_side,
 };
 use super::{GridPoint, Plane};
+use smallvec::SmallVec;
 use std::cmp::Ordering;
 use std::sync::Arc;
 
@@ -65,8 +66,14 @@ pub enum Boundary {
 }
 
 /// A convex piece of a face. See the module docs. Pieces are made only here (`from_convex` and
-/// the splits), which keep `lines`, `corners`, `segments`, `points` and `line_approx` parallel;
-/// the caches are crate-private so that nothing else can make them disagree.
+/// the splits), which keep each vertex's line, its cached f64 point and line coefficients and its
+/// grid facts together in one [`Vertex`] record; the records are private (read through
+/// [`Piece::line`], [`Piece::corner`] and the like) so that nothing else can make them disagree.
+///
+/// Layout: up to four vertices (triangles and quads, most of the pieces any scene makes) live
+/// inline, so making, splitting and dropping such a piece allocates nothing (a piece of a triangle
+/// is one allocation-free record, where seven parallel `Vec`s made seven); a piece of more
+/// vertices keeps them in one heap array.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Piece {
     /// Index of the screen polygon (face) it belongs to.
@@ -74,35 +81,62 @@ pub struct Piece {
     /// The support plane of that polygon: every point of the piece lies in it. Shared by the
     /// polygon's pieces and the cut lines made from it.
     pub support: Arc<Plane>,
-    /// Boundary lines, counter-clockwise; vertex k is where `lines[k-1]` and `lines[k]` cross.
-    pub lines: Vec<Line>,
-    /// Where each line comes from (`boundaries[k]` for `lines[k]`).
-    pub boundaries: Vec<Boundary>,
-    /// The grid (x, y) of vertex k when it is a grid point (an input corner, or two face edges
-    /// crossing exactly at a mesh vertex): exact fast paths use it.
-    pub corners: Vec<Option<[i64; 2]>>,
-    /// For line k, the grid (x, y) of the face edge it runs along, when it is one (both ends lie
-    /// on the support plane): a sign that agrees at both ends holds all along it.
-    pub segments: Vec<Option<[[i64; 2]; 2]>>,
     /// The grid bounds (x0, y0, x1, y1) of the face's polygon, exact: every part lies inside.
     pub frame: [i64; 4],
-    /// Vertex k in f64 grid coordinates with a proven error bound, (x, y, e): the exact vertex
+    /// Vertex k and the line leaving it, counter-clockwise: vertex k is where lines k-1 and k
+    /// cross.
+    vertices: SmallVec<[Vertex; 4]>,
+}
+
+/// Vertex k of a piece and its line k (from vertex k to vertex k + 1), with everything the
+/// exact tests cache about them: 128 bytes.
+#[derive(Clone, Debug, PartialEq)]
+struct Vertex {
+    /// Line k: the boundary line from this vertex to the next; the piece is on its positive side.
+    line: Line,
+    /// `line.approx()`, computed once: other pieces are tested against these lines.
+    approx: LineApprox,
+    /// The vertex in f64 grid coordinates with a proven error bound, (x, y, e): the exact vertex
     /// is within e of (x, y) in each coordinate (e = 0 at grid corners, infinite where the
     /// crossing is too ill-conditioned to bound). Computed once when the vertex is made: sign
     /// tests against many lines then cost a dot product each ([`LineApprox::sign_at`]).
-    pub(crate) points: Vec<[f64; 3]>,
-    /// `lines[k].approx()`, computed once: other pieces are tested against these lines.
-    pub(crate) line_approx: Vec<LineApprox>,
+    point: [f64; 3],
+    /// Where line k comes from.
+    boundary: Boundary,
+    /// Is the vertex a grid point (an input corner, or two face edges crossing exactly at a
+    /// mesh vertex)? Exact fast paths use its grid coordinates. They are `point`'s x and y,
+    /// which hold them exactly (grid coordinates are integers of at most 2^53, every one an
+    /// f64), with e = 0: a flag instead of an `Option<[i64; 2]>` keeps the record at 128 bytes
+    /// instead of 152.
+    is_corner: bool,
+    /// Does line k run along an edge of the face's own outline (a [`Line::Edge`] whose both ends
+    /// lie on the support plane, the side of the piece within them)? Then a sign that agrees at
+    /// both ends holds all along the piece's side: see [`Piece::segment`]. A line that is an
+    /// edge of some other face (a split by an occluder's side) is no such segment: the piece's
+    /// side along it may reach past its ends.
+    on_face_edge: bool,
 }
 
-/// `all[k]` for each k of `run`, then `closing`: a part's per-line array, allocated once at its
-/// final size.
-fn kept_then<T: Clone>(run: &[usize], all: &[T], closing: T) -> Vec<T> {
-    let mut v = Vec::with_capacity(run.len() + 1);
-    v.extend(run.iter().map(|&k| all[k].clone()));
-    v.push(closing);
-    v
+impl Vertex {
+    #[inline]
+    fn corner(&self) -> Option<[i64; 2]> {
+        self.is_corner
+            .then(|| [self.point[0] as i64, self.point[1] as i64])
+    }
 }
+
+/// A vertex's point as [`Vertex`] keeps it: whether it is a grid point, and its f64 point with
+/// its error bound ([`grid_point`] for a grid point).
+type VertexPoint = (bool, [f64; 3]);
+
+/// Grid point (x, y) as a vertex's f64 point: exact (|x|, |y| <= `GRID_MAX` = 2^53), error 0.
+fn grid_point([x, y]: [i64; 2]) -> VertexPoint {
+    debug_assert!(x.abs() <= super::GRID_MAX && y.abs() <= super::GRID_MAX);
+    (true, [x as f64, y as f64, 0.0])
+}
+
+/// The signs of a piece's vertices against a plane or line (on the stack up to eight).
+type Signs = SmallVec<[Ordering; 8]>;
 
 /// Where a piece lies relative to a plane or a line.
 #[derive(Clone, Debug, PartialEq)]
@@ -145,53 +179,109 @@ impl Piece {
         }
         let corners = &kept[..];
         let n = corners.len();
-        let lines: Vec<Line> = (0..n)
-            .map(|k| {
-                Line::Edge(
-                    Plane::edge(corners[k], corners[(k + 1) % n])
-                        .expect("consecutive corners differ"),
-                )
-            })
-            .collect();
-        // Vertex k sits between line k-1 and line k: corner k.
-        let segments = (0..n)
-            .map(|k| {
-                let (a, b) = (corners[k], corners[(k + 1) % n]);
-                Some([[a.x, a.y], [b.x, b.y]])
-            })
-            .collect();
         let frame = corners
             .iter()
             .fold([i64::MAX, i64::MAX, i64::MIN, i64::MIN], |f, c| {
                 [f[0].min(c.x), f[1].min(c.y), f[2].max(c.x), f[3].max(c.y)]
             });
-        let points = corners
-            .iter()
-            .map(|c| [c.x as f64, c.y as f64, 0.0])
+        // Vertex k is corner k; line k runs along the face's side from corner k to k + 1.
+        let vertices = (0..n)
+            .map(|k| {
+                let (c, next) = (corners[k], corners[(k + 1) % n]);
+                let line = Line::edge(c, next).expect("consecutive corners differ");
+                let (is_corner, point) = grid_point([c.x, c.y]);
+                Vertex {
+                    approx: line.approx(),
+                    line,
+                    point,
+                    boundary: boundaries[k],
+                    is_corner,
+                    on_face_edge: true,
+                }
+            })
             .collect();
-        let corners = corners.iter().map(|c| Some([c.x, c.y])).collect();
-        let line_approx = lines.iter().map(Line::approx).collect();
         Piece {
             poly,
             support: Arc::new(support),
-            lines,
-            boundaries,
-            corners,
-            segments,
             frame,
-            points,
-            line_approx,
+            vertices,
         }
     }
 
     /// The number of lines (and of vertices).
     pub fn len(&self) -> usize {
-        self.lines.len()
+        self.vertices.len()
     }
 
     /// True for no lines (never the case for a piece made here).
     pub fn is_empty(&self) -> bool {
-        self.lines.is_empty()
+        self.vertices.is_empty()
+    }
+
+    /// Line k, from vertex k to vertex k + 1; the piece is on its positive side.
+    #[inline]
+    pub fn line(&self, k: usize) -> &Line {
+        &self.vertices[k].line
+    }
+
+    /// The boundary lines, counter-clockwise: vertex k is where lines k-1 and k cross.
+    pub fn lines(&self) -> impl ExactSizeIterator<Item = &Line> + Clone {
+        self.vertices.iter().map(|v| &v.line)
+    }
+
+    /// Where line k comes from.
+    #[inline]
+    pub fn boundary(&self, k: usize) -> Boundary {
+        self.vertices[k].boundary
+    }
+
+    /// Where each line comes from, in the order of [`Self::lines`].
+    pub fn boundaries(&self) -> impl ExactSizeIterator<Item = Boundary> + Clone {
+        self.vertices.iter().map(|v| v.boundary)
+    }
+
+    /// The grid (x, y) of vertex k when it is a grid point (an input corner, or two face edges
+    /// crossing exactly at a mesh vertex): exact fast paths use it.
+    #[inline]
+    pub fn corner(&self, k: usize) -> Option<[i64; 2]> {
+        self.vertices[k].corner()
+    }
+
+    /// For line k, the grid (x, y) of the face edge it runs along, when it is one (both ends lie
+    /// on the support plane, the piece's side between them): a sign that agrees at both ends
+    /// holds all along it.
+    #[inline]
+    pub fn segment(&self, k: usize) -> Option<[[i64; 2]; 2]> {
+        match &self.vertices[k] {
+            Vertex {
+                on_face_edge: true,
+                line: Line::Edge(ends),
+                ..
+            } => Some(*ends),
+            _ => None,
+        }
+    }
+
+    /// Vertex k in f64 with its proven error bound (x, y, e): see [`Vertex::point`].
+    #[inline]
+    pub(crate) fn point(&self, k: usize) -> [f64; 3] {
+        self.vertices[k].point
+    }
+
+    /// The points of [`Self::point`], in order.
+    pub(crate) fn points(&self) -> impl ExactSizeIterator<Item = [f64; 3]> + Clone {
+        self.vertices.iter().map(|v| v.point)
+    }
+
+    /// `line(k).approx()`, cached.
+    #[inline]
+    pub(crate) fn line_approx(&self, k: usize) -> &LineApprox {
+        &self.vertices[k].approx
+    }
+
+    /// Each line with its cached f64 coefficients.
+    pub(crate) fn lines_with_approx(&self) -> impl ExactSizeIterator<Item = (&Line, &LineApprox)> {
+        self.vertices.iter().map(|v| (&v.line, &v.approx))
     }
 
     /// `Cut(q, support)`: on the support plane, the sign of `q` (divided by `c_S > 0`).
@@ -201,8 +291,8 @@ impl Piece {
 
     /// The two lines through vertex k.
     fn vertex_lines(&self, k: usize) -> [&Line; 2] {
-        let n = self.lines.len();
-        [&self.lines[(k + n - 1) % n], &self.lines[k]]
+        let n = self.len();
+        [self.line((k + n - 1) % n), self.line(k)]
     }
 
     /// Is the point of the support plane above vertex k on plane `q`, by construction: `q` is
@@ -213,7 +303,7 @@ impl Piece {
                 Line::Cut(x, y) => {
                     (**x == *self.support && **y == *q) || (**x == *q && **y == *self.support)
                 }
-                Line::Edge(_) => false,
+                Line::Edge(_) | Line::Vertical(_) => false,
             })
     }
 
@@ -243,10 +333,10 @@ impl Piece {
     fn vertex_plane_sign_with(&self, k: usize, q: &Arc<Plane>, qa: &LineApprox) -> Ordering {
         // Most signs are far from zero: the cached point settles them in one dot product (at a
         // grid corner exactly, its error bound being 0).
-        if let Some(s) = qa.sign_at(self.points[k]) {
+        if let Some(s) = qa.sign_at(self.point(k)) {
             return s;
         }
-        if let Some([x, y]) = self.corners[k] {
+        if let Some([x, y]) = self.corner(k) {
             return self.cut_by(q).sign_at_grid_exact(x, y);
         }
         if let Some(s) = depth_order_filtered(self.vertex_lines(k), &self.support, q) {
@@ -264,7 +354,7 @@ impl Piece {
         // On a face edge whose two ends have the same sign, every point has it: this settles
         // the exact zeros of shared edges without any determinant.
         let n = self.len();
-        for seg in [self.segments[(k + n - 1) % n], self.segments[k]]
+        for seg in [self.segment((k + n - 1) % n), self.segment(k)]
             .into_iter()
             .flatten()
         {
@@ -288,15 +378,15 @@ impl Piece {
     pub fn vertex_line_sign_with(&self, k: usize, l: &Line, la: &LineApprox) -> Ordering {
         // The cached point and its error bound: one dot product settles most signs (at a grid
         // corner exactly).
-        if let Some(sign) = la.sign_at(self.points[k]) {
+        if let Some(sign) = la.sign_at(self.point(k)) {
             return sign;
         }
-        if let Some([x, y]) = self.corners[k] {
+        if let Some([x, y]) = self.corner(k) {
             return l.sign_at_grid_exact(x, y);
         }
         // A vertex lies on the lines that define it: no arithmetic needed.
         let [a, b] = self.vertex_lines(k);
-        if a == l || b == l || *a == negate(l) || *b == negate(l) {
+        if a.is_same_or_opposite(l) || b.is_same_or_opposite(l) {
             return Ordering::Equal;
         }
         // The determinant's filter, tighter than the point's where the crossing is
@@ -334,7 +424,7 @@ impl Piece {
         }
         // On a face edge whose two ends have the same sign, every point has it.
         let n = self.len();
-        for [[x0, y0], [x1, y1]] in [self.segments[(k + n - 1) % n], self.segments[k]]
+        for [[x0, y0], [x1, y1]] in [self.segment((k + n - 1) % n), self.segment(k)]
             .into_iter()
             .flatten()
         {
@@ -388,7 +478,7 @@ impl Piece {
             return Split::On;
         }
         let qa = self.cut_by(q).approx();
-        let signs: Vec<Ordering> = (0..self.len())
+        let signs: Signs = (0..self.len())
             .map(|k| self.vertex_plane_sign_with(k, q, &qa))
             .collect();
         // On the support plane, Cut(S, Q) = c_Q·S - c_S·Q has the sign of -Q: positive on the
@@ -412,10 +502,10 @@ impl Piece {
 
     /// [`Self::split_by_line`] with `l.approx()` given (a piece keeps its lines').
     pub fn split_by_line_with(&self, l: &Line, la: &LineApprox, origin: Boundary) -> Split {
-        let signs: Vec<Ordering> = (0..self.len())
+        let signs: Signs = (0..self.len())
             .map(|k| self.vertex_line_sign_with(k, l, la))
             .collect();
-        self.split_with(&signs, negate(l), l.clone(), origin)
+        self.split_with(&signs, l.negated(), l.clone(), origin)
     }
 
     /// Splits given the vertex signs; `neg_line` bounds the negative part (positive inside it),
@@ -451,53 +541,56 @@ impl Piece {
         let start = (0..n)
             .find(|&k| signs[k] != side && signs[(k + 1) % n] == side)
             .expect("a straddling convex piece enters each side once");
-        let mut run = vec![start];
-        let mut k = (start + 1) % n;
-        while signs[k] == side {
-            run.push(k);
-            k = (k + 1) % n;
-        }
         // An end vertex of the run is not on `side`: it is an old vertex when it lies on the cut,
         // a new (implicit) one otherwise.
         // A new vertex where two face edges cross may be a grid point (a mesh vertex): marking
         // it keeps the exact zeros of edges concurrent there out of the determinants.
-        let end_vertex = |v: usize, kept: usize| -> (Option<[i64; 2]>, [f64; 3]) {
+        let end_vertex = |v: usize, kept: usize| -> VertexPoint {
             if signs[v] == Ordering::Equal {
-                return (self.corners[v], self.points[v]);
+                return (self.vertices[v].is_corner, self.point(v));
             }
-            let point = point_of(&closing, &self.lines[kept]);
-            match grid_crossing(&closing, &self.lines[kept], point) {
-                Some([x, y]) => (Some([x, y]), [x as f64, y as f64, 0.0]),
-                None => (None, point),
+            let point = point_of(&closing, self.line(kept));
+            match grid_crossing(&closing, self.line(kept), point) {
+                Some(c) => grid_point(c),
+                None => (false, point),
             }
         };
-        let last = (run[run.len() - 1] + 1) % n;
+        // The kept lines run from `start` to `last_kept`, then the closing line.
+        let mut last_kept = start;
+        while signs[(last_kept + 1) % n] == side {
+            last_kept = (last_kept + 1) % n;
+        }
+        let last = (last_kept + 1) % n;
         // Vertex 0 joins the closing line and the first kept edge; vertex i joins kept edges
         // i-1 and i; the last joins the last kept edge and the closing line.
-        let (first_corner, first_point) = end_vertex(start, start);
-        let (last_corner, last_point) = end_vertex(last, run[run.len() - 1]);
-        let line_approx = kept_then(&run, &self.line_approx, closing.approx());
-        let lines = kept_then(&run, &self.lines, closing);
-        let boundaries = kept_then(&run, &self.boundaries, origin);
-        let segments = kept_then(&run, &self.segments, None);
-        let mut corners = Vec::with_capacity(lines.len());
-        corners.push(first_corner);
-        corners.extend(run[1..].iter().map(|&k| self.corners[k]));
-        corners.push(last_corner);
-        let mut points = Vec::with_capacity(lines.len());
-        points.push(first_point);
-        points.extend(run[1..].iter().map(|&k| self.points[k]));
-        points.push(last_point);
+        let first = end_vertex(start, start);
+        let (last_is_corner, last_point) = end_vertex(last, last_kept);
+        let mut vertices = SmallVec::with_capacity((last_kept + n - start) % n + 2);
+        let mut k = start;
+        loop {
+            let mut v = self.vertices[k].clone();
+            if k == start {
+                (v.is_corner, v.point) = first;
+            }
+            vertices.push(v);
+            if k == last_kept {
+                break;
+            }
+            k = (k + 1) % n;
+        }
+        vertices.push(Vertex {
+            approx: closing.approx(),
+            line: closing,
+            point: last_point,
+            boundary: origin,
+            is_corner: last_is_corner,
+            on_face_edge: false,
+        });
         Piece {
             poly: self.poly,
             support: self.support.clone(),
-            lines,
-            boundaries,
-            corners,
-            segments,
             frame: self.frame,
-            points,
-            line_approx,
+            vertices,
         }
     }
 
@@ -507,7 +600,7 @@ impl Piece {
     pub fn bounds(&self) -> [f64; 4] {
         let f = self.frame.map(|v| v as f64);
         let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
-        for &[x, y, e] in &self.points {
+        for [x, y, e] in self.points() {
             if !e.is_finite() {
                 return f;
             }
@@ -530,7 +623,7 @@ impl Piece {
     /// Is vertex k the same point as `other`'s vertex v? Exact: the cached points settle most
     /// pairs that are apart, then the point must lie on both lines of vertex k.
     pub fn same_vertex(&self, k: usize, other: &Piece, v: usize) -> bool {
-        let ([x, y, e], [u, w, f]) = (self.points[k], other.points[v]);
+        let ([x, y, e], [u, w, f]) = (self.point(k), other.point(v));
         // Each exact coordinate is within e (f) of its f64 one; the slack covers the rounding
         // of the differences. Infinite bounds never reject.
         let apart =
@@ -545,7 +638,7 @@ impl Piece {
 
     /// Vertex k in f64 grid coordinates (rounded: for output and bounds, never decisions).
     pub fn vertex_f64(&self, k: usize) -> [f64; 2] {
-        let [x, y, _] = self.points[k];
+        let [x, y, _] = self.point(k);
         [x, y]
     }
 
@@ -555,7 +648,7 @@ impl Piece {
     }
 }
 
-/// Where two lines cross with its error bound, as [`Piece::points`] holds it. The f64 point is
+/// Where two lines cross with its error bound, as [`Piece::point`] holds it. The f64 point is
 /// `crossing_f64`'s (the same bits whatever the order of the lines).
 fn point_of(l: &Line, m: &Line) -> [f64; 3] {
     match crossing_with_error(l, m) {
@@ -573,8 +666,7 @@ fn point_of(l: &Line, m: &Line) -> [f64; 3] {
 /// grid point is possible. Otherwise Cramer's rule decides in 256-bit integers, without a
 /// division: see [`exact_quotient`].
 fn grid_crossing(l: &Line, m: &Line, [x, y, e]: [f64; 3]) -> Option<[i64; 2]> {
-    use bnum::cast::As;
-    let (Line::Edge(p), Line::Edge(q)) = (l, m) else {
+    let (Some(p), Some(q)) = (l.vertical_coefficients(), m.vertical_coefficients()) else {
         return None;
     };
     let on_both = |x: i64, y: i64| {
@@ -597,9 +689,10 @@ fn grid_crossing(l: &Line, m: &Line, [x, y, e]: [f64; 3]) -> Option<[i64; 2]> {
     // products, sum and division each within U, taken 8 times): when no integer lies within
     // the bound of dx or dy the crossing is no grid point; when the bound is below one half
     // only the rounded offsets can be one, checked exactly.
-    let value = |p: &Plane| p.a * gx as i128 + p.b * gy as i128 + p.d.as_::<i128>();
+    let value = |[a, b, d]: [i128; 3]| a * gx as i128 + b * gy as i128 + d;
     let (v1, v2) = (value(p), value(q));
-    let den = super::i128_to_f64(p.a * q.b - q.a * p.b);
+    let ([pa, pb, _], [qa, qb, _]) = (p, q);
+    let den = super::i128_to_f64(pa * qb - qa * pb);
     if den == 0.0 {
         return None;
     }
@@ -609,8 +702,8 @@ fn grid_crossing(l: &Line, m: &Line, [x, y, e]: [f64; 3]) -> Option<[i64; 2]> {
         let bound = 8.0 * super::U * ((terms.0.abs() + terms.1.abs()) / den.abs() + d.abs());
         (d, bound)
     };
-    let (dx, ex) = solve(super::i128_to_f64(p.b), super::i128_to_f64(q.b));
-    let (dy, ey) = solve(-super::i128_to_f64(p.a), -super::i128_to_f64(q.a));
+    let (dx, ex) = solve(super::i128_to_f64(pb), super::i128_to_f64(qb));
+    let (dy, ey) = solve(-super::i128_to_f64(pa), -super::i128_to_f64(qa));
     if (dx - dx.round()).abs() > ex || (dy - dy.round()).abs() > ey {
         return None;
     }
@@ -622,19 +715,19 @@ fn grid_crossing(l: &Line, m: &Line, [x, y, e]: [f64; 3]) -> Option<[i64; 2]> {
     exact_grid_crossing(p, q).filter(|&[x, y]| on_both(x, y))
 }
 
-/// Where two edge planes' lines cross when that is a grid point, by Cramer's rule in 256-bit
-/// integers, without a division: see [`exact_quotient`].
-fn exact_grid_crossing(p: &Plane, q: &Plane) -> Option<[i64; 2]> {
+/// Where two vertical lines (coefficients (a, b, d)) cross when that is a grid point, by
+/// Cramer's rule in 256-bit integers, without a division: see [`exact_quotient`].
+fn exact_grid_crossing([pa, pb, pd]: [i128; 3], [qa, qb, qd]: [i128; 3]) -> Option<[i64; 2]> {
     use bnum::cast::As;
     use bnum::types::I256;
     // Edge coefficients: a, b below 2^55, d below 2^108.
     let w = |v: i128| -> I256 { v.as_() };
-    let den = w(p.a * q.b - q.a * p.b);
+    let den = w(pa * qb - qa * pb);
     if den == w(0) {
         return None;
     }
-    let nx = w(p.b) * q.d - w(q.b) * p.d;
-    let ny = w(q.a) * p.d - w(p.a) * q.d;
+    let nx = w(pb) * w(qd) - w(qb) * w(pd);
+    let ny = w(qa) * w(pd) - w(pa) * w(qd);
     Some([exact_quotient(nx, den)?, exact_quotient(ny, den)?])
 }
 
@@ -675,17 +768,15 @@ fn exact_quotient(n: bnum::types::I256, den: bnum::types::I256) -> Option<i64> {
 /// whenever they do not overlap.
 pub fn separated(p: &Piece, q: &Piece) -> bool {
     let outside = |a: &Piece, b: &Piece| {
-        (a.lines.iter().zip(&a.line_approx)).any(|(l, la)| !b.sides_of_line_with(l, la).1)
+        a.lines_with_approx()
+            .any(|(l, la)| !b.sides_of_line_with(l, la).1)
     };
     outside(q, p) || outside(p, q)
 }
 
-/// The line with its sides swapped.
+/// The line with its sides swapped ([`Line::negated`]).
 pub fn negate(l: &Line) -> Line {
-    match l {
-        Line::Edge(p) => Line::Edge(p.negated()),
-        Line::Cut(p, q) => Line::Cut(q.clone(), p.clone()),
-    }
+    l.negated()
 }
 
 /// Are two support planes (c > 0) the same plane? Exact: their coefficients are proportional
@@ -904,7 +995,7 @@ mod tests {
     fn assert_valid(p: &Piece) {
         assert!(p.len() >= 3);
         for k in 0..p.len() {
-            for l in &p.lines {
+            for l in p.lines() {
                 assert_ne!(p.vertex_line_sign(k, l), Ordering::Less, "{p:?}");
             }
         }
@@ -923,7 +1014,7 @@ mod tests {
     #[test]
     fn split_square_by_line_through_the_middle() {
         let sq = square();
-        let l = Line::Edge(Plane::edge(gp(50, -10, 0), gp(50, 200, 0)).unwrap());
+        let l = Line::edge(gp(50, -10, 0), gp(50, 200, 0)).unwrap();
         let Split::Both(neg, pos) = sq.split_by_line(&l, Boundary::ScreenSplit) else {
             panic!()
         };
@@ -938,17 +1029,17 @@ mod tests {
     #[test]
     fn split_through_vertices_keeps_them_exact() {
         let sq = square();
-        let l = Line::Edge(Plane::edge(gp(0, 0, 0), gp(100, 100, 0)).unwrap());
+        let l = Line::edge(gp(0, 0, 0), gp(100, 100, 0)).unwrap();
         let Split::Both(neg, pos) = sq.split_by_line(&l, Boundary::ScreenSplit) else {
             panic!()
         };
         assert_eq!((neg.len(), pos.len()), (3, 3));
         // The diagonal's ends are the square's corners, kept as grid points.
-        assert!(neg.corners.iter().all(|c| c.is_some()));
-        assert!(pos.corners.iter().all(|c| c.is_some()));
+        assert!((0..neg.len()).all(|k| neg.corner(k).is_some()));
+        assert!((0..pos.len()).all(|k| pos.corner(k).is_some()));
         // A line touching at a corner only does not split.
         // Its left (positive) side is x + y > 200: the square is on the negative side.
-        let t = Line::Edge(Plane::edge(gp(100, 100, 0), gp(200, 0, 0)).unwrap());
+        let t = Line::edge(gp(100, 100, 0), gp(200, 0, 0)).unwrap();
         assert_eq!(sq.split_by_line(&t, Boundary::ScreenSplit), Split::Negative);
     }
 
@@ -985,19 +1076,16 @@ mod tests {
         let cut = Boundary::Cut { a: 0, b: 7 };
         let side = |side| Boundary::Outline { poly: 0, side };
         // The square's sides run bottom (0), right (1), top (2), left (3); x > 50 is nearer.
-        assert_eq!(near.boundaries, vec![side(0), side(1), side(2), cut]);
-        assert_eq!(far.boundaries, vec![side(2), side(3), side(0), cut]);
-        let l = Line::Edge(Plane::edge(gp(0, 50, 0), gp(200, 50, 0)).unwrap());
+        let boundaries = |p: &Piece| p.boundaries().collect::<Vec<_>>();
+        assert_eq!(boundaries(&near), vec![side(0), side(1), side(2), cut]);
+        assert_eq!(boundaries(&far), vec![side(2), side(3), side(0), cut]);
+        let l = Line::edge(gp(0, 50, 0), gp(200, 50, 0)).unwrap();
         let Split::Both(below, above) = far.split_by_line(&l, Boundary::ScreenSplit) else {
             panic!()
         };
-        assert_eq!(below.lines.len(), below.boundaries.len());
-        assert!(below.boundaries.contains(&Boundary::ScreenSplit));
-        assert!(above.boundaries.contains(&Boundary::ScreenSplit));
-        assert!(below.boundaries.contains(&cut) && above.boundaries.contains(&cut));
-        for p in [&near, &far, &below, &above] {
-            assert_eq!(p.lines.len(), p.boundaries.len());
-        }
+        assert!(boundaries(&below).contains(&Boundary::ScreenSplit));
+        assert!(boundaries(&above).contains(&Boundary::ScreenSplit));
+        assert!(boundaries(&below).contains(&cut) && boundaries(&above).contains(&cut));
     }
 
     #[test]
@@ -1013,8 +1101,7 @@ mod tests {
             let mut pieces = vec![square()];
             for _ in 0..6 {
                 let (a, b) = (gp(rnd(150), rnd(150), 0), gp(rnd(150), rnd(150), 0));
-                let Some(e) = Plane::edge(a, b) else { continue };
-                let l = Line::Edge(e);
+                let Some(l) = Line::edge(a, b) else { continue };
                 let mut next = Vec::new();
                 for p in &pieces {
                     match p.split_by_line(&l, Boundary::ScreenSplit) {
@@ -1032,6 +1119,39 @@ mod tests {
             let total: f64 = pieces.iter().map(|p| area(&p.vertices_f64())).sum();
             assert!((total - 10000.0).abs() < 1e-6, "{total}");
         }
+    }
+
+    /// The layout the module docs promise (64-bit targets): a 40-byte line, a 128-byte vertex
+    /// record, four of them inline.
+    #[test]
+    #[cfg(target_pointer_width = "64")]
+    fn layout_sizes() {
+        use std::mem::size_of;
+        assert_eq!(size_of::<Line>(), 40);
+        assert_eq!(size_of::<Vertex>(), 128);
+        assert_eq!(size_of::<Piece>(), 568);
+        // Splitting a triangle by a line through none of its corners: a triangle and a quad,
+        // both inline.
+        let c = [gp(0, 0, 0), gp(100, 0, 0), gp(0, 100, 0)];
+        let tri = Piece::from_convex(0, Plane::through(c[0], c[1], c[2]).unwrap(), &c, |side| {
+            Boundary::Outline {
+                poly: 0,
+                side: side as u32,
+            }
+        });
+        let l = Line::edge(gp(50, -10, 0), gp(50, 200, 0)).unwrap();
+        let Split::Both(neg, pos) = tri.split_by_line(&l, Boundary::ScreenSplit) else {
+            panic!()
+        };
+        assert_eq!((neg.len(), pos.len()), (3, 4));
+        assert!(!tri.vertices.spilled() && !neg.vertices.spilled() && !pos.vertices.spilled());
+        // The corners the split kept are grid points still, the new ones too (x = 50 on the
+        // grid), read back exactly from the f64 points.
+        let mut quad: Vec<_> = (0..4).map(|k| pos.corner(k)).collect();
+        quad.sort();
+        let want = [[0, 0], [0, 100], [50, 0], [50, 50]].map(Some);
+        assert_eq!(quad, want);
+        assert!((0..neg.len()).all(|k| neg.corner(k).is_some()));
     }
 
     #[test]

@@ -7,7 +7,8 @@
 //! the defining coefficients.
 //!
 //! A [`Line`] is an input edge (a vertical plane through two grid points, coefficients below
-//! 2^55 and 2^108) or the screen projection of the meeting of two input planes,
+//! 2^55 and 2^108, kept as its two ends), another vertical plane (screen and sample lines,
+//! within the same bounds) or the screen projection of the meeting of two input planes,
 //! `c_Q·P - c_P·Q` (a support plane's normal is below 2^109 and its offset below 2^165, so the
 //! cut's coefficients are below 2^219 and 2^275). The largest determinant any predicate here
 //! takes is of degree 13 in the grid coordinates:
@@ -57,24 +58,176 @@ fn count_fallback() {
 }
 
 /// A line on screen: a vertical plane `a·x + b·y + d = 0` of the grid. Its positive side is its
-/// left (counter-clockwise interior, y up) for edges made by [`Plane::edge`].
+/// left (counter-clockwise interior, y up) for edges made by [`Line::edge`].
 ///
-/// A cut holds its two planes by shared pointer: they are support planes of polygons, held once
-/// by the pieces of each polygon (`Piece::support`) and by every line cut from them, so a line
-/// is 96 bytes whatever the width of the planes' integers.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+/// A line is 40 bytes: every piece holds one per vertex, so its size is the pieces' size. An
+/// edge keeps its two grid ends (32 bytes) instead of the 80-byte [`Plane`] of its
+/// coefficients, which are recomputed from them exactly in i128 (as [`Plane::edge`] computes
+/// them) whenever they are needed; a cut holds its two planes by shared pointer: they are
+/// support planes of polygons, held once by the pieces of each polygon (`Piece::support`) and by
+/// every line cut from them.
+///
+/// Lines are equal when their coefficients are (`PartialEq`, `Hash`): an edge and a vertical
+/// line with the same coefficients are the same line, as two edges whose ends differ but give
+/// the same coefficients are; a cut equals only a cut of the same two planes.
+#[derive(Clone, Debug)]
 pub enum Line {
-    /// An input vertical plane (`c == 0`): an edge of a face.
-    Edge(Plane),
+    /// An edge of a face: the vertical plane through the grid points `p → q` (x, y), whose
+    /// coefficients are [`Plane::edge`]`(p, q)`'s. The ends differ.
+    Edge([[i64; 2]; 2]),
+    /// Any other vertical plane (`c == 0`): a screen line, a sample row or column.
+    Vertical(Vertical),
     /// The projection of the meeting line of two non-parallel input planes `P`, `Q`:
     /// `c_Q·P - c_P·Q`, which has no z term.
     Cut(Arc<Plane>, Arc<Plane>),
+}
+
+/// The coefficients of a vertical plane `a·x + b·y + d = 0` with `|a|, |b| < 2^63` and
+/// `|d| < 2^127`, in 32 bytes aligned to 8 (an i128 field would make [`Line`] 48 bytes): every
+/// vertical line the crate makes fits (edges have `|a|, |b| <= 2^54`, `|d| < 2^108`; sample
+/// lines `a <= 2^16`, `|d| < 2^70`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Vertical {
+    a: i64,
+    b: i64,
+    d: [u64; 2],
+}
+
+impl Vertical {
+    /// The coefficients (a, b, d).
+    #[inline]
+    pub fn coefficients(&self) -> [i128; 3] {
+        let d = ((self.d[1] as i128) << 64) | self.d[0] as i128;
+        [self.a as i128, self.b as i128, d]
+    }
 }
 
 impl Line {
     /// The cut of two planes given by value (`Line::Cut` of new shared planes).
     pub fn cut(p: Plane, q: Plane) -> Line {
         Line::Cut(Arc::new(p), Arc::new(q))
+    }
+
+    /// The edge through grid points `p → q` (their x and y): `Plane::edge(p, q)` as a line.
+    /// `None` when they have the same x and y.
+    pub fn edge(p: GridPoint, q: GridPoint) -> Option<Line> {
+        (p.x != q.x || p.y != q.y).then_some(Line::Edge([[p.x, p.y], [q.x, q.y]]))
+    }
+
+    /// The vertical plane `p` (`c == 0`) as a line. Panics when its coefficients do not fit
+    /// [`Vertical`] (no line the crate makes comes near).
+    pub fn vertical(p: &Plane) -> Line {
+        assert_eq!(p.c, 0, "a screen line is a vertical plane");
+        // Strictly below 2^63 and 2^127 in magnitude, so that the negated line fits too.
+        let fits = |v: i128| {
+            assert!(
+                v.unsigned_abs() < 1 << 63,
+                "vertical line coefficient below 2^63"
+            );
+            v as i64
+        };
+        let d: i128 = p.d.as_();
+        assert!(
+            w256(d) == p.d && d != i128::MIN,
+            "vertical line offset below 2^127"
+        );
+        Line::Vertical(Vertical {
+            a: fits(p.a),
+            b: fits(p.b),
+            d: [d as u64, (d >> 64) as u64],
+        })
+    }
+
+    /// The coefficients (a, b, d) of an edge or vertical line, exactly; `None` for a cut.
+    #[inline]
+    pub fn vertical_coefficients(&self) -> Option<[i128; 3]> {
+        match self {
+            Line::Edge(e) => Some(edge_coefficients(e)),
+            Line::Vertical(v) => Some(v.coefficients()),
+            Line::Cut(..) => None,
+        }
+    }
+
+    /// An edge or vertical line as its plane (`c == 0`); `None` for a cut.
+    pub fn vertical_plane(&self) -> Option<Plane> {
+        let [a, b, d] = self.vertical_coefficients()?;
+        Some(Plane {
+            a,
+            b,
+            c: 0,
+            d: w256(d),
+        })
+    }
+
+    /// The line with its sides swapped (exactly the negated coefficients: an edge runs the
+    /// other way, `Plane::edge(q, p)` being `-Plane::edge(p, q)` for a line through both).
+    pub fn negated(&self) -> Line {
+        match self {
+            Line::Edge([p, q]) => Line::Edge([*q, *p]),
+            Line::Vertical(v) => {
+                let [a, b, d] = v.coefficients();
+                let d = -d;
+                Line::Vertical(Vertical {
+                    a: -a as i64,
+                    b: -b as i64,
+                    d: [d as u64, (d >> 64) as u64],
+                })
+            }
+            Line::Cut(p, q) => Line::Cut(q.clone(), p.clone()),
+        }
+    }
+}
+
+impl Line {
+    /// Is `self` the line `l` or `l` with its sides swapped (`== l || == l.negated()`, without
+    /// building the negation)?
+    pub fn is_same_or_opposite(&self, l: &Line) -> bool {
+        match (self, l) {
+            (Line::Cut(p, q), Line::Cut(r, s)) => (p == r && q == s) || (p == s && q == r),
+            (Line::Cut(..), _) | (_, Line::Cut(..)) => false,
+            (Line::Edge([p, q]), Line::Edge([r, s])) if (p, q) == (r, s) || (p, q) == (s, r) => {
+                true
+            }
+            _ => {
+                let (own, [a, b, d]) = (
+                    self.vertical_coefficients(),
+                    l.vertical_coefficients().expect("a vertical line"),
+                );
+                own == Some([a, b, d]) || own == Some([-a, -b, -d])
+            }
+        }
+    }
+}
+
+/// [`Plane::edge`]'s coefficients for the ends `p → q`: `a = p.y - q.y`, `b = q.x - p.x`,
+/// `d = -(a·p.x + b·p.y)`; grid coordinates are below 2^53, so `|a|, |b| <= 2^54` and the
+/// offset is below 2^108: i128 holds them exactly.
+#[inline]
+fn edge_coefficients([p, q]: &[[i64; 2]; 2]) -> [i128; 3] {
+    let a = (p[1] - q[1]) as i128;
+    let b = (q[0] - p[0]) as i128;
+    [a, b, -(a * p[0] as i128 + b * p[1] as i128)]
+}
+
+impl PartialEq for Line {
+    fn eq(&self, other: &Line) -> bool {
+        match (self, other) {
+            (Line::Cut(p, q), Line::Cut(r, s)) => p == r && q == s,
+            (Line::Cut(..), _) | (_, Line::Cut(..)) => false,
+            (Line::Edge(e), Line::Edge(f)) if e == f => true,
+            _ => self.vertical_coefficients() == other.vertical_coefficients(),
+        }
+    }
+}
+
+impl Eq for Line {}
+
+impl std::hash::Hash for Line {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        match self {
+            Line::Cut(p, q) => (1u8, p, q).hash(h),
+            _ => (0u8, self.vertical_coefficients()).hash(h),
+        }
     }
 }
 
@@ -130,12 +283,14 @@ impl Line {
     /// f64 coefficients (a, b, d) with their magnitude bounds.
     fn filtered(&self) -> [Entry; 3] {
         match self {
-            Line::Edge(p) => {
-                debug_assert_eq!(p.c, 0);
+            Line::Edge(_) | Line::Vertical(_) => {
+                // The same f64s as from the plane's I256 offset: `i256_to_f64` converts an
+                // offset that fits i128 with `i128_to_f64`.
+                let [a, b, d] = self.vertical_coefficients().expect("a vertical line");
                 [
-                    entry(i128_to_f64(p.a)),
-                    entry(i128_to_f64(p.b)),
-                    entry(i256_to_f64(p.d)),
+                    entry(i128_to_f64(a)),
+                    entry(i128_to_f64(b)),
+                    entry(i128_to_f64(d)),
                 ]
             }
             Line::Cut(p, q) => {
@@ -173,10 +328,16 @@ impl Line {
     /// corners, which are common and expected.
     pub fn sign_at_grid(&self, x: i64, y: i64) -> Ordering {
         match self {
-            Line::Edge(p) => {
-                // |a|, |b| <= 2^54, |x|, |y| <= 2^53 and |d| < 2^108: i128.
-                let d: i128 = p.d.as_();
-                (p.a * x as i128 + p.b * y as i128 + d).cmp(&0)
+            Line::Edge([p, q]) => {
+                // `a·(x - p.x) + b·(y - p.y)`, the edge's value at (x, y) (its offset is
+                // `-(a·p.x + b·p.y)`): differences below 2^54, products below 2^108, i128.
+                let (a, b) = ((p[1] - q[1]) as i128, (q[0] - p[0]) as i128);
+                (a * (x as i128 - p[0] as i128) + b * (y as i128 - p[1] as i128)).cmp(&0)
+            }
+            Line::Vertical(v) => {
+                // Coefficients below 2^63 (in practice 2^16 here) at |x|, |y| <= 2^53: i128.
+                let [a, b, d] = v.coefficients();
+                (a * x as i128 + b * y as i128 + d).cmp(&0)
             }
             Line::Cut(..) => match self.approx().sign_at([x as f64, y as f64, 0.0]) {
                 Some(s) => s,
@@ -188,7 +349,7 @@ impl Line {
     /// [`Self::sign_at_grid`] without the filter: for callers whose own filter failed.
     pub fn sign_at_grid_exact(&self, x: i64, y: i64) -> Ordering {
         match self {
-            Line::Edge(..) => self.sign_at_grid(x, y),
+            Line::Edge(..) | Line::Vertical(..) => self.sign_at_grid(x, y),
             Line::Cut(p, q) => {
                 let (x, y) = (w256(x as i128), w256(y as i128));
                 let at = |pl: &Plane| -> I512 { (w256(pl.a) * x + w256(pl.b) * y + pl.d).as_() };
@@ -201,7 +362,10 @@ impl Line {
     /// Exact coefficients (a, b, d).
     pub fn exact(&self) -> [Wide; 3] {
         match self {
-            Line::Edge(p) => [wide(p.a), wide(p.b), wide_256(p.d)],
+            Line::Edge(_) | Line::Vertical(_) => self
+                .vertical_coefficients()
+                .expect("a vertical line")
+                .map(wide),
             Line::Cut(p, q) => {
                 let (pc, qc) = (wide(p.c), wide(q.c));
                 [

@@ -339,7 +339,7 @@ pub fn centre_truth(screen: &ScreenScene, visible: &VisibleSet) -> CentreTruths 
                 let e = (x.abs() + y.abs()) * f64::EPSILON;
                 let mut on = Vec::new();
                 let mut outside = false;
-                for (line, approx) in piece.lines.iter().zip(&piece.line_approx) {
+                for (line, approx) in piece.lines_with_approx() {
                     let side = approx
                         .sign_at([x, y, e])
                         .or_else(|| line_side([&s.column_line(i), &row], line));

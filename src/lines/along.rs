@@ -137,9 +137,9 @@ impl Carrier {
     /// p to q.
     pub fn new(line: Line) -> Carrier {
         // Only the signs and the larger of |a| and |b| matter: exact in i64 for an edge line.
-        let (along_x, a_negative, b_negative) = match &line {
-            Line::Edge(p) => (p.b.unsigned_abs() >= p.a.unsigned_abs(), p.a < 0, p.b < 0),
-            Line::Cut(..) => {
+        let (along_x, a_negative, b_negative) = match line.vertical_coefficients() {
+            Some([a, b, _]) => (b.unsigned_abs() >= a.unsigned_abs(), a < 0, b < 0),
+            None => {
                 let [a, b, _] = line.exact();
                 (
                     b.unsigned_abs() >= a.unsigned_abs(),
@@ -228,14 +228,14 @@ impl Carrier {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact::{GridPoint, Plane};
+    use crate::exact::GridPoint;
 
     fn g(x: i64, y: i64) -> GridPoint {
         GridPoint { x, y, z: 0 }
     }
 
     fn edge(p: (i64, i64), q: (i64, i64)) -> Line {
-        Line::Edge(Plane::edge(g(p.0, p.1), g(q.0, q.1)).unwrap())
+        Line::edge(g(p.0, p.1), g(q.0, q.1)).unwrap()
     }
 
     #[test]

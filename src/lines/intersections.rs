@@ -344,7 +344,7 @@ fn edge_on_meeting(flat: &FlatFace, b: &ScreenPoly, parts: &[Vec<Line>]) -> Opti
     let c = &flat.corners;
     // The screen line: through the two corners farthest apart along it.
     let (lo, hi) = (c.iter().min()?, c.iter().max()?);
-    let line = Line::Edge(Plane::edge(*lo, *hi)?);
+    let line = Line::edge(*lo, *hi)?;
     let carrier = Carrier::new(line.clone());
     // Where b's plane crosses the face's sides in 3D, exactly.
     let sign = |p: &GridPoint| b.plane.sign_at(*p);
@@ -466,7 +466,7 @@ pub(crate) fn convex_parts(screen: &ScreenScene, p: &ScreenPoly) -> Vec<Vec<Line
     };
     let lines_of = |ring: &[GridPoint]| -> Vec<Line> {
         (0..ring.len())
-            .filter_map(|i| Plane::edge(ring[i], ring[(i + 1) % ring.len()]).map(Line::Edge))
+            .filter_map(|i| Line::edge(ring[i], ring[(i + 1) % ring.len()]))
             .collect()
     };
     if ccw.len() == 3 {

@@ -188,7 +188,7 @@ pub fn line_tracks(
         let Some([p, q]) = snap_segment(&m, a, b) else {
             continue;
         };
-        let Some(plane) = Plane::edge(p, q) else {
+        let Some(line) = Line::edge(p, q) else {
             continue;
         };
         track_of_edge[e] = tracks.len() as u32;
@@ -210,7 +210,7 @@ pub fn line_tracks(
             SeenRule::Unoccluded
         };
         tracks.push(Track::new(
-            Line::Edge(plane),
+            line,
             edge.kind,
             faces,
             intersections::plane_along(p, q),

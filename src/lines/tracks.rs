@@ -32,7 +32,6 @@ use crate::exact::predicates::{Line, Wide, depth_order_at};
 use crate::exact::{GRID_MAX, GridPoint, Plane, Samples, w256};
 use crate::project::ScreenScene;
 use crate::visibility::grid::BoxGrid;
-use bnum::cast::As;
 use rustc_hash::FxHashMap as HashMap;
 use std::cmp::Ordering;
 
@@ -117,9 +116,9 @@ pub struct TrackIndex<'a> {
 /// Vertex k of `piece` as a point of the line of its side k or k - 1: a grid corner, or where
 /// the other line of the vertex crosses that line.
 fn vertex_at(piece: &Piece, k: usize, other_line: usize) -> At {
-    match piece.corners[k] {
+    match piece.corner(k) {
         Some(c) => At::Grid(c),
-        None => At::Cross(piece.lines[other_line].clone()),
+        None => At::Cross(piece.line(other_line).clone()),
     }
 }
 
@@ -136,10 +135,10 @@ pub fn mark_seen(screen: &ScreenScene, pieces: &[Piece], index: &TrackIndex, tra
                 vertex_at(piece, k, (k + n - 1) % n),
                 vertex_at(piece, (k + 1) % n, (k + 1) % n),
             );
-            match piece.boundaries[k] {
+            match piece.boundary(k) {
                 Boundary::Outline { poly: p, side } if p == piece.poly => {
                     // Along the run of collinear outline sides from `side`.
-                    let line = &piece.lines[k];
+                    let line = piece.line(k);
                     let mut j = side as usize;
                     loop {
                         let t = index.of_side[poly.start as usize + j];
@@ -175,8 +174,11 @@ pub fn mark_seen(screen: &ScreenScene, pieces: &[Piece], index: &TrackIndex, tra
                             continue;
                         }
                         let edge = &tracks[t as usize].carrier.line;
-                        let along = match (&piece.lines[k], edge) {
-                            (Line::Edge(p), Line::Edge(q)) => same_edge_line(p, q),
+                        let along = match (
+                            piece.line(k).vertical_coefficients(),
+                            edge.vertical_coefficients(),
+                        ) {
+                            (Some(p), Some(q)) => same_edge_line(p, q),
                             _ => {
                                 piece.vertex_line_sign(k, edge) == Ordering::Equal
                                     && piece.vertex_line_sign((k + 1) % n, edge) == Ordering::Equal
@@ -192,12 +194,13 @@ pub fn mark_seen(screen: &ScreenScene, pieces: &[Piece], index: &TrackIndex, tra
     }
 }
 
-/// Are two edge lines (vertical planes through grid points) the same line? Exact: their
-/// coefficients are proportional (products below 2^55 · 2^55 in i128, and 2^55 · 2^108 in
-/// 256 bits).
-fn same_edge_line(p: &Plane, q: &Plane) -> bool {
-    let (pa, pb, qa, qb) = (p.a, p.b, q.a, q.b);
-    pa * qb == pb * qa && w256(pa) * q.d == w256(qa) * p.d && w256(pb) * q.d == w256(qb) * p.d
+/// Are two edge lines (vertical planes through grid points, coefficients (a, b, d)) the same
+/// line? Exact: their coefficients are proportional (products below 2^55 · 2^55 in i128, and
+/// 2^55 · 2^108 in 256 bits).
+fn same_edge_line([pa, pb, pd]: [i128; 3], [qa, qb, qd]: [i128; 3]) -> bool {
+    pa * qb == pb * qa
+        && w256(pa) * w256(qd) == w256(qa) * w256(pd)
+        && w256(pb) * w256(qd) == w256(qb) * w256(pd)
 }
 
 /// Does grid point `p` lie on the line `l`? Exact.
@@ -234,7 +237,7 @@ pub struct Segment {
 fn view_lines() -> [Line; 4] {
     let h = GRID_MAX / 2;
     let g = |x, y| GridPoint { x, y, z: 0 };
-    let edge = |p, q| Line::Edge(Plane::edge(p, q).expect("distinct points"));
+    let edge = |p, q| Line::edge(p, q).expect("distinct points");
     [
         edge(g(-h, -h), g(h, -h)),
         edge(g(h, -h), g(h, h)),
@@ -251,7 +254,11 @@ pub fn clip_to_convex(carrier: &Carrier, lines: &[Line]) -> Option<(At, At)> {
 }
 
 /// [`clip_to_convex`], a carrier along one of the lines counting as inside when `closed`.
-fn clip_to_region(carrier: &Carrier, lines: &[Line], closed: bool) -> Option<(At, At)> {
+fn clip_to_region<'a>(
+    carrier: &Carrier,
+    lines: impl IntoIterator<Item = &'a Line>,
+    closed: bool,
+) -> Option<(At, At)> {
     let mut lo: Option<(Param, &Line)> = None;
     let mut hi: Option<(Param, &Line)> = None;
     for m in lines {
@@ -443,14 +450,9 @@ fn cmp_lines(l: &Normalized, m: &Normalized) -> Ordering {
 type LineKey = (i128, i128, i128);
 
 fn line_key(l: &Line) -> Option<LineKey> {
-    let Line::Edge(p) = l else { return None };
-    // An edge line's offset is below 2^108: i128.
-    let d: i128 = p.d.as_();
-    let g = gcd(
-        gcd(p.a.unsigned_abs(), p.b.unsigned_abs()),
-        d.unsigned_abs(),
-    ) as i128;
-    let (mut a, mut b, mut d) = (p.a / g, p.b / g, d / g);
+    let [a, b, d] = l.vertical_coefficients()?;
+    let g = gcd(gcd(a.unsigned_abs(), b.unsigned_abs()), d.unsigned_abs()) as i128;
+    let (mut a, mut b, mut d) = (a / g, b / g, d / g);
     if a < 0 || (a == 0 && b < 0) {
         (a, b, d) = (-a, -b, -d);
     }
@@ -656,10 +658,10 @@ pub fn mark_occluded(pieces: &[Piece], tracks: &mut [Track]) {
         let mut beside: [Vec<(At, At)>; 2] = [Vec::new(), Vec::new()];
         for &i in &near {
             let piece = &pieces[i as usize];
-            if let Some(inside) = clip_to_region(&track.carrier, &piece.lines, false) {
+            if let Some(inside) = clip_to_region(&track.carrier, piece.lines(), false) {
                 occluded.extend(in_front(track, inside, &piece.support));
             } else if let Some(side) = side_along(&track.carrier, piece)
-                && let Some(along) = clip_to_region(&track.carrier, &piece.lines, true)
+                && let Some(along) = clip_to_region(&track.carrier, piece.lines(), true)
             {
                 // A piece with a side on the line: in front there, it hides the line only
                 // together with one on the other side (the line then runs under a surface).
@@ -674,7 +676,7 @@ pub fn mark_occluded(pieces: &[Piece], tracks: &mut [Track]) {
 /// When one of `piece`'s lines lies on the carrier: the carrier's side the piece lies on (0:
 /// left, where the carrier's equation is positive; 1: right). Exact.
 fn side_along(carrier: &Carrier, piece: &Piece) -> Option<usize> {
-    let line = piece.lines.iter().find(|l| {
+    let line = piece.lines().find(|l| {
         carrier.heading(l) == Ordering::Equal && carrier.side_of_parallel(l) == Ordering::Equal
     })?;
     // The piece lies on its line's positive side: the carrier's too when their normals agree.
@@ -707,12 +709,11 @@ fn depth_order_on(carrier: &Carrier, at: &At, s: &Plane, t: &Plane) -> Ordering 
         At::Grid([x, y]) => {
             // A grid line through the point, across the carrier.
             let p = GridPoint { x: *x, y: *y, z: 0 };
-            let vertical =
-                Line::Edge(Plane::edge(p, GridPoint { y: y + 1, ..p }).expect("distinct"));
+            let vertical = Line::edge(p, GridPoint { y: y + 1, ..p }).expect("distinct");
             if carrier.crosses(&vertical) {
                 vertical
             } else {
-                Line::Edge(Plane::edge(p, GridPoint { x: x + 1, ..p }).expect("distinct"))
+                Line::edge(p, GridPoint { x: x + 1, ..p }).expect("distinct")
             }
         }
     };

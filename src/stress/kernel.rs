@@ -81,7 +81,7 @@ pub fn pieces(visible: &VisibleSet) -> Vec<PieceLines> {
         .iter()
         .map(|p| PieceLines {
             poly: p.poly as usize,
-            lines: p.lines.iter().map(|l| l.exact().map(big)).collect(),
+            lines: p.lines().map(|l| l.exact().map(big)).collect(),
         })
         .collect()
 }

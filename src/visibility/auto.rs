@@ -476,10 +476,10 @@ impl Crowding {
                 continue;
             }
             // The cached f64 vertices (no allocation).
-            let v = &p.points;
-            let twice: f64 = (0..v.len())
+            let n = p.len();
+            let twice: f64 = (0..n)
                 .map(|k| {
-                    let (a, c) = (v[k], v[(k + 1) % v.len()]);
+                    let (a, c) = (p.point(k), p.point((k + 1) % n));
                     a[0] * c[1] - c[0] * a[1]
                 })
                 .sum();

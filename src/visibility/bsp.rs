@@ -103,7 +103,7 @@ fn score(splitter: &Splitter, sample: &[&Piece]) -> i64 {
 /// The vertical line x = m (or y = m), positive on the larger side.
 fn screen_line(axis: usize, m: i64) -> Line {
     let (a, b) = if axis == 0 { (1, 0) } else { (0, 1) };
-    Line::Edge(Plane {
+    Line::vertical(&Plane {
         a,
         b,
         c: 0,
@@ -249,6 +249,9 @@ impl Bsp {
             // Coplanar pieces that overlap resolve by the tie rule; in a separated bag the order
             // is free, and the same key keeps it deterministic.
             on.sort_by_key(|p| tie_key(screen, p));
+            // The node keeps its pieces for the whole walk: no spare room (a vector of pieces
+            // grows by doubling from four, and a piece is a few hundred bytes inline).
+            on.shrink_to_fit();
             stats.fragments += on.len();
             stats.depth = stats.depth.max(depth);
             let index = nodes.len() as u32;

@@ -356,9 +356,8 @@ pub(crate) fn clip(piece: Piece, front: &Piece, outside: &mut Vec<Piece>) -> Opt
         return None;
     }
     let mut inside = piece;
-    let lines = front.lines.iter().zip(&front.line_approx);
-    for ((line, approx), origin) in lines.zip(&front.boundaries) {
-        match inside.split_by_line_with(line, approx, *origin) {
+    for ((line, approx), origin) in front.lines_with_approx().zip(front.boundaries()) {
+        match inside.split_by_line_with(line, approx, origin) {
             // Entirely outside this line of `front`: nothing of it is inside.
             Split::Negative => {
                 outside.push(inside);

@@ -83,7 +83,7 @@ pub fn visible_set_with_progress(
 /// with occlusion cells when `occlusion` ([`Coverage::with_occlusion`]).
 pub(crate) fn coverage_of<'a>(
     screen: &'a ScreenScene,
-    mut pieces: Vec<Piece>,
+    pieces: Vec<Piece>,
     report: Option<Report>,
     occlusion: bool,
 ) -> Coverage<'a> {
@@ -92,12 +92,23 @@ pub(crate) fn coverage_of<'a>(
         .iter()
         .map(|p| screen.corners(p).iter().map(|c| c.z).min().unwrap_or(0))
         .collect();
-    pieces.sort_by_key(|p| (near[p.poly as usize], tie_key(screen, p)));
-    let mut coverage = Coverage::with_occlusion(screen, &pieces, occlusion);
+    // The order sorted, not the pieces: a piece is a few hundred bytes inline, and a sort
+    // moves each many times. A stable sort of the indices gives the stable sort's order.
+    let mut order: Vec<u32> = (0..pieces.len() as u32).collect();
+    order.sort_by_key(|&i| {
+        let p = &pieces[i as usize];
+        (near[p.poly as usize], tie_key(screen, p))
+    });
+    let mut coverage = Coverage::with_occlusion(
+        screen,
+        order.iter().map(|&i| &pieces[i as usize]),
+        occlusion,
+    );
     let mut ticker = Ticker::new(report, "visible set", pieces.len() as u64);
-    for (i, p) in pieces.into_iter().enumerate() {
-        coverage.insert(p);
-        ticker.tick(i as u64 + 1);
+    let mut pieces: Vec<Option<Piece>> = pieces.into_iter().map(Some).collect();
+    for (n, &i) in order.iter().enumerate() {
+        coverage.insert(pieces[i as usize].take().expect("each piece once"));
+        ticker.tick(n as u64 + 1);
     }
     ticker.finish();
     coverage

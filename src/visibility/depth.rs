@@ -62,7 +62,7 @@ pub fn range(screen: &ScreenScene, p: &Piece) -> [f64; 2] {
     let [lo, hi] = corner_range(screen, p);
     let plane = PlaneF64::of(p);
     let (mut near, mut far) = (f64::MAX, f64::MIN);
-    for &point in &p.points {
+    for point in p.points() {
         if !point[2].is_finite() {
             return [lo, hi];
         }

@@ -145,10 +145,7 @@ impl Occlusion {
                         origin[0] + i * size[0] + size[0] / 2,
                         origin[1] + j * size[1] + size[1] / 2,
                     );
-                    inside[k] = p
-                        .lines
-                        .iter()
-                        .all(|l| l.sign_at_grid(x, y) != Ordering::Less);
+                    inside[k] = p.lines().all(|l| l.sign_at_grid(x, y) != Ordering::Less);
                 }
             });
         }

@@ -150,8 +150,7 @@ impl VisibleSet {
                     }
                     let col = s.column_line(i);
                     let inside = piece
-                        .lines
-                        .iter()
+                        .lines()
                         .all(|l| line_side([&col, &row], l) != Some(Ordering::Less));
                     if inside {
                         ids[k] = Some(id);

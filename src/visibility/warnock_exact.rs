@@ -88,7 +88,7 @@ type Area = [i64; 4];
 /// The area's four sides as lines positive inside it, with their corners.
 fn sides(a: &Area) -> [Line; 4] {
     let line = |a: i128, b: i128, d: i64| {
-        Line::Edge(Plane {
+        Line::vertical(&Plane {
             a,
             b,
             c: 0,
@@ -126,7 +126,7 @@ fn classify(p: &Piece, area: &Area, sides: &[Line; 4]) -> Class {
         return Class::Disjoint;
     }
     let mut surrounds = true;
-    for l in &p.lines {
+    for l in p.lines() {
         let signs = corners(area).map(|[x, y]| l.sign_at_grid(x, y));
         if signs.iter().all(|&s| s != Ordering::Greater) {
             return Class::Disjoint;

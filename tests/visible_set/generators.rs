@@ -704,7 +704,7 @@ fn generators_reach_the_degenerate_cases() {
             visible
                 .pieces
                 .iter()
-                .any(|p| p.lines.iter().any(|l| matches!(l, Line::Cut(..)))),
+                .any(|p| p.lines().any(|l| matches!(l, Line::Cut(..)))),
         );
         let overlap = |a: &Poly, b: &Poly| {
             let bx = |p: &Poly| {

@@ -61,7 +61,19 @@ pub type Coeffs = [BigInt; 3];
 
 fn coeffs(l: &Line) -> Coeffs {
     match l {
-        Line::Edge(p) => [big(p.a), big(p.b), big256(p.d)],
+        // An edge through (px, py) -> (qx, qy): a = py - qy, b = qx - px, d = -(a·px + b·py).
+        Line::Edge([[px, py], [qx, qy]]) => {
+            let (a, b) = (
+                big(*py as i128) - big(*qy as i128),
+                big(*qx as i128) - big(*px as i128),
+            );
+            let d = -(&a * big(*px as i128) + &b * big(*py as i128));
+            [a, b, d]
+        }
+        Line::Vertical(_) => {
+            let p = l.vertical_plane().expect("a vertical line");
+            [big(p.a), big(p.b), big256(p.d)]
+        }
         Line::Cut(p, q) => {
             let (pc, qc) = (big(p.c), big(q.c));
             [
@@ -134,16 +146,16 @@ pub struct ExactPiece {
 /// lines cross, every vertex inside or on every line and strictly inside the lines not through
 /// it (strictly convex), positive area, and each recorded input corner is the vertex exactly.
 pub fn exact_piece(p: &Piece) -> Result<ExactPiece, String> {
-    let n = p.lines.len();
-    if n < 3 || p.corners.len() != n {
-        return Err(format!("{n} lines, {} corners: {p:?}", p.corners.len()));
+    let n = p.lines().len();
+    if n < 3 {
+        return Err(format!("{n} lines: {p:?}"));
     }
-    let lines: Vec<Coeffs> = p.lines.iter().map(coeffs).collect();
+    let lines: Vec<Coeffs> = p.lines().map(coeffs).collect();
     let mut verts = Vec::with_capacity(n);
     for k in 0..n {
         let v = crossing(&lines[(k + n - 1) % n], &lines[k])
             .ok_or_else(|| format!("lines {} and {k} are parallel: {p:?}", (k + n - 1) % n))?;
-        if let Some([x, y]) = p.corners[k]
+        if let Some([x, y]) = p.corner(k)
             && (v.x != big(x as i128) * &v.w || v.y != big(y as i128) * &v.w)
         {
             return Err(format!(
