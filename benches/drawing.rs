@@ -16,24 +16,25 @@ use sightline::camera::{CamFile, Camera};
 use sightline::methods::Output;
 use sightline::pipeline::prepare;
 use sightline::project::CullMode;
-use sightline::render::{RenderOptions, render};
+use sightline::project::ScreenScene;
+use sightline::render::{RenderOptions, Rendered, render};
 use sightline::scene::Scene;
 use sightline::scene::primitives::{exported_sphere_scene, random_triangle_soup};
 use std::hint::black_box;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
+/// The SVG render of `scene` after projection (the visible set and the regions; the SVG is
+/// written by `Rendered::write`).
+fn rendered(scene: &Scene, cam: &Camera, screen: &ScreenScene) -> Rendered {
+    let options = RenderOptions::new(Output::Svg);
+    render(scene, cam, screen, &options, None).expect("an SVG of an opaque scene")
+}
+
 /// Projection, the visible set, the regions and the SVG: returns the bytes written.
 fn run(scene: &Scene, cam: &Camera) -> usize {
     let prepared = prepare(scene, cam, CullMode::Auto);
-    let rendered = render(
-        scene,
-        cam,
-        &prepared.screen,
-        &RenderOptions::new(Output::Svg),
-        None,
-    )
-    .expect("an SVG of an opaque scene");
+    let rendered = rendered(scene, cam, &prepared.screen);
     let mut out = Vec::new();
     rendered.write(&mut out).expect("into memory");
     out.len()
@@ -44,14 +45,7 @@ fn report(name: &str, scene: &Scene, cam: &Camera) {
     let t = Instant::now();
     let prepared = prepare(scene, cam, CullMode::Auto);
     let project = t.elapsed().as_secs_f64();
-    let rendered = render(
-        scene,
-        cam,
-        &prepared.screen,
-        &RenderOptions::new(Output::Svg),
-        None,
-    )
-    .expect("an SVG of an opaque scene");
+    let rendered = rendered(scene, cam, &prepared.screen);
     let t = Instant::now();
     rendered.write(&mut std::io::sink()).expect("to nowhere");
     let write = t.elapsed().as_secs_f64();

@@ -20,11 +20,10 @@
 //!
 //! The README's "Output contract" lists every element, class and attribute.
 
-use super::svg::{hex, num};
+use super::svg::{background, num, pixel_document};
 use super::svg_stream::SvgStream;
 use crate::lines::{LineDrawing, LineKind, Stroke, Visibility};
-use ::svg::Document;
-use ::svg::node::element::{Group, Path, Rectangle, Style};
+use ::svg::node::element::{Group, Path, Style};
 use std::fmt::Write;
 
 /// CSS pixels per millimetre (96 per inch).
@@ -87,20 +86,11 @@ impl LineSvgOptions {
 /// background if asked for, then the line layers.
 pub fn write_line_svg(drawing: &LineDrawing, options: &LineSvgOptions) -> String {
     let (w, h) = (drawing.width, drawing.height);
-    let doc = Document::new()
-        .set("viewBox", format!("0 0 {w} {h}"))
-        .set("width", w)
-        .set("height", h);
     let mut out = Vec::new();
-    let mut s = SvgStream::new(&mut out, doc);
+    let mut s = SvgStream::new(&mut out, pixel_document(w, h));
     let written = (|| {
         if let Some(bg) = options.background {
-            s.child(
-                Rectangle::new()
-                    .set("width", w)
-                    .set("height", h)
-                    .set("fill", hex(bg)),
-            )?;
+            s.child(background(w, h, bg))?;
         }
         write_line_layers(&mut s, drawing, options)?;
         s.finish()

@@ -53,21 +53,13 @@ pub fn write_document(
     lines: Option<(&LineDrawing, &LineSvgOptions)>,
 ) -> std::io::Result<()> {
     let (w, h) = (drawing.width, drawing.height);
-    let mut doc = Document::new()
-        .set("viewBox", format!("0 0 {w} {h}"))
-        .set("width", w)
-        .set("height", h);
+    let mut doc = pixel_document(w, h);
     if options.crisp {
         doc = doc.set("shape-rendering", "crispEdges");
     }
     let mut s = SvgStream::new(out, doc);
     if let Some(bg) = drawing.background {
-        s.child(
-            Rectangle::new()
-                .set("width", w)
-                .set("height", h)
-                .set("fill", hex(bg)),
-        )?;
+        s.child(background(w, h, bg))?;
     }
     if !drawing.seams.is_empty() {
         write_seams(&mut s, &drawing.seams)?;
@@ -106,6 +98,22 @@ pub fn write_document(
         write_line_layers(&mut s, lines, line_options)?;
     }
     s.finish()
+}
+
+/// The root of a document `w` x `h` pixels, one user unit a pixel.
+pub(super) fn pixel_document(w: u32, h: u32) -> Document {
+    Document::new()
+        .set("viewBox", format!("0 0 {w} {h}"))
+        .set("width", w)
+        .set("height", h)
+}
+
+/// A rectangle of `color` over the whole document, `w` x `h` pixels.
+pub(super) fn background(w: u32, h: u32, color: [f64; 3]) -> Rectangle {
+    Rectangle::new()
+        .set("width", w)
+        .set("height", h)
+        .set("fill", hex(color))
 }
 
 /// Width of the seam strokes, in screen pixels whatever the zoom (`non-scaling-stroke`): wide
