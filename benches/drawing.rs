@@ -52,13 +52,9 @@ fn report(name: &str, scene: &Scene, cam: &Camera) {
     let stages: Vec<String> = (rendered.stage_seconds.iter())
         .map(|(n, t)| format!("{n} {t:.3} s"))
         .collect();
-    let peak = std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            let l = s.lines().find(|l| l.starts_with("VmHWM:"))?;
-            l.split_whitespace().nth(1)?.parse::<f64>().ok()
-        })
-        .map_or("unknown".into(), |kb| format!("{:.0} MB", kb / 1024.0));
+    let peak = sightline::benchmark::peak_rss_kb().map_or("unknown".into(), |kb| {
+        format!("{:.0} MB", kb as f64 / 1024.0)
+    });
     eprintln!(
         "{name}: {} faces; project {project:.3} s, {}, SVG {write:.3} s; {}; peak memory so far {peak}",
         scene.faces.len(),

@@ -37,7 +37,7 @@ use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
 use crate::visibility::coverage::bounds;
-use crate::visibility::grid::{BoxGrid, for_each_near};
+use crate::visibility::grid::{NearBoxes, for_each_near};
 use bnum::cast::As;
 use rustc_hash::FxHashMap;
 
@@ -192,42 +192,34 @@ pub struct Vertices {
 /// id whichever comes first.
 pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
     let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
-    let mut grid = BoxGrid::holding(&boxes);
-    let mut near: Vec<u32> = Vec::new();
+    let mut near_boxes = NearBoxes::of(&boxes);
     let mut at_grid_point: FxHashMap<[i64; 2], ([f64; 2], u32)> = FxHashMap::default();
     let mut out = Vertices {
         pixels: Vec::with_capacity(pieces.len()),
         ids: Vec::with_capacity(pieces.len()),
     };
     let mut next = 0u32;
+    // The earlier pieces near the current one, found when one of its vertices first needs them.
+    let mut earlier: Vec<usize> = Vec::new();
     for (a, pa) in pieces.iter().enumerate() {
         let (mut pixels, mut ids) = (Vec::with_capacity(pa.len()), Vec::with_capacity(pa.len()));
-        let mut near_known = false;
+        let mut earlier_known = false;
         for k in 0..pa.len() {
             let (known, grid_point) = match pa.corner(k) {
                 Some(g) => (at_grid_point.get(&g).copied(), Some(g)),
                 None => {
-                    if !near_known {
-                        // Earlier pieces whose closed boxes meet this one's.
-                        let ba = &boxes[a];
-                        grid.entries_near(ba, &mut near);
-                        near.retain(|&b| {
-                            let bb = &boxes[b as usize];
-                            (b as usize) < a
-                                && ba[0] <= bb[2]
-                                && bb[0] <= ba[2]
-                                && ba[1] <= bb[3]
-                                && bb[1] <= ba[3]
-                        });
-                        near_known = true;
+                    if !earlier_known {
+                        let near = near_boxes.of_box(a);
+                        earlier.clear();
+                        earlier.extend_from_slice(&near[..near.partition_point(|&b| b < a)]);
+                        earlier_known = true;
                     }
-                    let earlier = near.iter().find_map(|&b| {
-                        let b = b as usize;
+                    let same = earlier.iter().find_map(|&b| {
                         (0..pieces[b].len())
                             .find(|&v| pa.same_vertex(k, &pieces[b], v))
                             .map(|v| (out.pixels[b][v], out.ids[b][v]))
                     });
-                    match earlier {
+                    match same {
                         Some(named) => (Some(named), None),
                         None => {
                             let g = grid_point_of(pa, k);

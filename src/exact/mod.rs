@@ -272,19 +272,8 @@ impl Plane {
     /// (inside a counter-clockwise polygon, y up): its value at r is `orient2d(p, q, r)`.
     /// `None` when `p` and `q` have the same (x, y).
     pub fn edge(p: GridPoint, q: GridPoint) -> Option<Plane> {
-        let a = (p.y - q.y) as i128;
-        let b = (q.x - p.x) as i128;
-        if a == 0 && b == 0 {
-            return None;
-        }
-        // |a|, |b| <= 2^54 and |x|, |y| <= 2^53: the offset fits in i128.
-        let d = -(a * p.x as i128 + b * p.y as i128);
-        Some(Plane {
-            a,
-            b,
-            c: 0,
-            d: w256(d),
-        })
+        // The edge line's coefficients, computed in one place.
+        predicates::Line::edge(p, q)?.vertical_plane()
     }
 
     /// The plane's equation at a grid point, exactly.

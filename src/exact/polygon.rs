@@ -774,11 +774,6 @@ pub fn separated(p: &Piece, q: &Piece) -> bool {
     outside(q, p) || outside(p, q)
 }
 
-/// The line with its sides swapped ([`Line::negated`]).
-pub fn negate(l: &Line) -> Line {
-    l.negated()
-}
-
 /// Are two support planes (c > 0) the same plane? Exact: their coefficients are proportional
 /// with a positive factor. The f64 cross products settle almost every pair that differs; the
 /// rest is compared in 512-bit integers (offsets below 2^165 times normals below 2^109).

@@ -94,6 +94,15 @@ pub struct Vertical {
 }
 
 impl Vertical {
+    /// Packs (a, b, d); the caller has checked the bounds.
+    fn new(a: i64, b: i64, d: i128) -> Vertical {
+        Vertical {
+            a,
+            b,
+            d: [d as u64, (d >> 64) as u64],
+        }
+    }
+
     /// The coefficients (a, b, d).
     #[inline]
     pub fn coefficients(&self) -> [i128; 3] {
@@ -131,11 +140,7 @@ impl Line {
             w256(d) == p.d && d != i128::MIN,
             "vertical line offset below 2^127"
         );
-        Line::Vertical(Vertical {
-            a: fits(p.a),
-            b: fits(p.b),
-            d: [d as u64, (d >> 64) as u64],
-        })
+        Line::Vertical(Vertical::new(fits(p.a), fits(p.b), d))
     }
 
     /// The coefficients (a, b, d) of an edge or vertical line, exactly; `None` for a cut.
@@ -165,13 +170,9 @@ impl Line {
         match self {
             Line::Edge([p, q]) => Line::Edge([*q, *p]),
             Line::Vertical(v) => {
+                // |a|, |b| < 2^63 and |d| < 2^127 (checked when made): the negations fit.
                 let [a, b, d] = v.coefficients();
-                let d = -d;
-                Line::Vertical(Vertical {
-                    a: -a as i64,
-                    b: -b as i64,
-                    d: [d as u64, (d >> 64) as u64],
-                })
+                Line::Vertical(Vertical::new(-a as i64, -b as i64, -d))
             }
             Line::Cut(p, q) => Line::Cut(q.clone(), p.clone()),
         }

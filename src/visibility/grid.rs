@@ -118,12 +118,39 @@ pub(crate) fn for_each_near(
     wanted: impl Fn(usize) -> bool,
     mut f: impl FnMut(usize, &[usize]),
 ) {
-    let mut grid = BoxGrid::holding(boxes);
-    let mut near: Vec<usize> = Vec::new();
-    let mut seen = vec![usize::MAX; boxes.len()];
-    for (a, ba) in boxes.iter().enumerate().filter(|&(a, _)| wanted(a)) {
+    let mut near = NearBoxes::of(boxes);
+    for a in (0..boxes.len()).filter(|&a| wanted(a)) {
+        f(a, near.of_box(a));
+    }
+}
+
+/// The boxes near each box of a list, asked for one box at a time ([`for_each_near`] asks for
+/// all of them in order).
+pub(crate) struct NearBoxes<'b> {
+    boxes: &'b [[f64; 4]],
+    grid: BoxGrid,
+    near: Vec<usize>,
+    /// The last box whose neighbours listed each box (each listed once).
+    seen: Vec<usize>,
+}
+
+impl<'b> NearBoxes<'b> {
+    /// Over `boxes`.
+    pub fn of(boxes: &'b [[f64; 4]]) -> NearBoxes<'b> {
+        NearBoxes {
+            boxes,
+            grid: BoxGrid::holding(boxes),
+            near: Vec::new(),
+            seen: vec![usize::MAX; boxes.len()],
+        }
+    }
+
+    /// The other boxes whose closed extents meet box `a`'s, ascending.
+    pub fn of_box(&mut self, a: usize) -> &[usize] {
+        let (boxes, near, seen) = (self.boxes, &mut self.near, &mut self.seen);
+        let ba = &boxes[a];
         near.clear();
-        grid.visit(
+        self.grid.visit(
             ba,
             |_| true,
             |b| {
@@ -142,6 +169,6 @@ pub(crate) fn for_each_near(
             },
         );
         near.sort_unstable();
-        f(a, &near);
+        near
     }
 }
