@@ -95,6 +95,10 @@ ids magenta, over the image's right faces in grey on white.";
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Threads for the exact visible set of large scenes, solved strip by strip (0: one per
+    /// core, or RAYON_NUM_THREADS). The output is the same, byte for byte, whatever the number.
+    #[arg(long, global = true, default_value_t = 0, value_name = "N")]
+    threads: usize,
 }
 
 #[derive(Subcommand)]
@@ -593,6 +597,12 @@ fn parse_rgb(s: &str) -> Result<[u8; 3], String> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if cli.threads > 0 {
+        // Fails only if a pool was already made: none is before this point.
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(cli.threads)
+            .build_global();
+    }
     // Interrupted (Ctrl-C, SIGTERM, SIGHUP) while an output is written: leave no temporary file
     // beside it. The handler runs on a thread of its own, not in the signal's context.
     let _ = ctrlc::set_handler(|| {
@@ -645,12 +655,12 @@ fn labelled_bar(len: u64, what: &str, counts: &str) -> ProgressBar {
 /// when the stage reaches its total.
 #[derive(Default)]
 struct StageBars {
-    bar: std::cell::RefCell<Option<(&'static str, ProgressBar)>>,
+    bar: std::sync::Mutex<Option<(&'static str, ProgressBar)>>,
 }
 
 impl StageBars {
     fn report(&self, stage: &'static str, done: u64, total: u64) {
-        let mut current = self.bar.borrow_mut();
+        let mut current = self.bar.lock().unwrap_or_else(|e| e.into_inner());
         if current.as_ref().is_none_or(|(s, _)| *s != stage) {
             if let Some((_, old)) = current.take() {
                 old.finish_and_clear();

@@ -10,8 +10,9 @@
 //! (a growing total adds about `STEPS` calls each time it doubles).
 
 /// Where a stage's progress goes: `(stage, done, total)`. See the module docs for the order of
-/// the calls.
-pub type Report<'a> = &'a dyn Fn(&'static str, u64, u64);
+/// the calls. `Sync`: a stage done in parts on several threads reports from each of them
+/// ([`crate::visibility::strips`]).
+pub type Report<'a> = &'a (dyn Fn(&'static str, u64, u64) + Sync);
 
 /// Throttled progress of one stage: counts items and calls the report now and then.
 pub struct Ticker<'a> {
@@ -85,18 +86,18 @@ impl<'a> Ticker<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::cell::RefCell;
+    use std::sync::Mutex;
 
     #[test]
     fn a_ticker_reports_a_few_monotone_steps_and_ends_at_the_total() {
-        let calls = RefCell::new(Vec::new());
-        let report = |s: &'static str, d: u64, t: u64| calls.borrow_mut().push((s, d, t));
+        let calls = Mutex::new(Vec::new());
+        let report = |s: &'static str, d: u64, t: u64| calls.lock().unwrap().push((s, d, t));
         let mut t = Ticker::new(Some(&report), "work", 100_000);
         for i in 0..=100_000 {
             t.tick(i);
         }
         t.finish();
-        let calls = calls.into_inner();
+        let calls = calls.into_inner().unwrap();
         assert!(calls.len() <= Ticker::STEPS as usize + 3, "{}", calls.len());
         assert_eq!(calls[0], ("work", 0, 100_000));
         assert_eq!(*calls.last().unwrap(), ("work", 100_000, 100_000));
@@ -105,14 +106,14 @@ mod tests {
 
     #[test]
     fn a_growing_total_is_reported_and_never_exceeded() {
-        let calls = RefCell::new(Vec::new());
-        let report = |_: &'static str, d: u64, t: u64| calls.borrow_mut().push((d, t));
+        let calls = Mutex::new(Vec::new());
+        let report = |_: &'static str, d: u64, t: u64| calls.lock().unwrap().push((d, t));
         let mut t = Ticker::new(Some(&report), "grow", 10);
         for i in 0..40 {
             t.tick_of(i, 10 + i);
         }
         t.finish();
-        let calls = calls.into_inner();
+        let calls = calls.into_inner().unwrap();
         assert!(calls.iter().all(|&(d, t)| d <= t));
         assert!(calls.windows(2).all(|w| w[0] <= w[1]));
         assert_eq!(*calls.last().unwrap(), (49, 49));

@@ -11,7 +11,7 @@ use sightline::project::{CullMode, ScreenScene};
 use sightline::scene::Scene;
 use sightline::scene::primitives::{random_triangle_soup, sphere_scene};
 use sightline::visibility::coverage_map::visible_set_with_progress;
-use std::cell::RefCell;
+use std::sync::Mutex;
 use support::camera::named_view;
 use support::strategy::{Bsp, CoverageMap, coverage_map};
 
@@ -27,10 +27,10 @@ fn screen_of(scene: &Scene) -> ScreenScene {
 
 /// Runs `run` with a progress report that records its calls; returns its result and the calls.
 fn recorded<T>(run: impl FnOnce(Report) -> T) -> (T, Vec<Call>) {
-    let calls = RefCell::new(Vec::new());
-    let report = |s: &'static str, d: u64, t: u64| calls.borrow_mut().push((s, d, t));
+    let calls = Mutex::new(Vec::new());
+    let report = |s: &'static str, d: u64, t: u64| calls.lock().unwrap().push((s, d, t));
     let out = run(&report);
-    (out, calls.into_inner())
+    (out, calls.into_inner().unwrap())
 }
 
 /// Checks one stage's calls and returns its final total. A stage whose total grows may report

@@ -126,18 +126,26 @@ pub fn draw(
     // The regions of a group are drawn as one item: one face, or (merging) one surface of
     // coplanar faces of one paint. One paint is what the output shows: the 8-bit colour,
     // material and opacity.
-    let group: Vec<u32> = if options.merge_surfaces {
-        surfaces(scene, screen, camera.eye, |i| {
-            let p = paints[i];
-            (
-                to_u8(p.color),
-                scene.faces[screen.polys[i].face as usize].material,
-                p.opacity.to_bits(),
-            )
-        })
-    } else {
-        screen.polys.iter().map(|p| p.id).collect()
-    };
+    let samples = Samples::new(screen.width, screen.height);
+    // The groups, and one rounding per exact vertex (for the regions, the outline and the seams
+    // alike): independent, so side by side.
+    let (group, vertices): (Vec<u32>, Vertices) = rayon::join(
+        || {
+            if options.merge_surfaces {
+                surfaces(scene, screen, camera.eye, |i| {
+                    let p = paints[i];
+                    (
+                        to_u8(p.color),
+                        scene.faces[screen.polys[i].face as usize].material,
+                        p.opacity.to_bits(),
+                    )
+                })
+            } else {
+                screen.polys.iter().map(|p| p.id).collect()
+            }
+        },
+        || shared_vertices(opaque, &samples),
+    );
     let item = |poly: u32, faces: &[u32], rings: Vec<Vec<[f64; 2]>>| {
         let p = paints[poly as usize];
         DrawItem {
@@ -150,10 +158,20 @@ pub fn draw(
         }
     };
     let group_of = |p: &Piece| group[p.poly as usize];
-    let samples = Samples::new(screen.width, screen.height);
-    // One rounding per exact vertex, for the regions, the outline and the seams alike.
-    let vertices = shared_vertices(opaque, &samples);
-    let mut items: Vec<DrawItem> = regions_of(opaque, &vertices, screen, group_of, report)
+    // The regions, the seam strokes and the outline read the same pieces and vertices, each on
+    // its own: on all cores.
+    let seams = options.seams && !opaque.is_empty();
+    let color = |p: &Piece| paints[p.poly as usize].color;
+    let (opaque_regions, (strokes, outline)) = rayon::join(
+        || regions_of(opaque, &vertices, screen, group_of, report),
+        || {
+            rayon::join(
+                || seams.then(|| seam_strokes(opaque, &vertices, &group_of, &color)),
+                || seams.then(|| outline(opaque, &vertices)),
+            )
+        },
+    );
+    let mut items: Vec<DrawItem> = opaque_regions
         .into_iter()
         .map(|r| item(opaque[r.piece].poly, &r.faces, r.rings))
         .collect();
@@ -184,14 +202,9 @@ pub fn draw(
         }
         items.push(item(poly, &[screen.polys[poly as usize].id], rings));
     }
-    let seams = if options.seams && !opaque.is_empty() {
-        let color = |p: &Piece| paints[p.poly as usize].color;
-        Seams {
-            strokes: seam_strokes(opaque, &vertices, &group_of, &color),
-            outline: outline(opaque, &vertices),
-        }
-    } else {
-        Seams::default()
+    let seams = match (strokes, outline) {
+        (Some(strokes), Some(outline)) => Seams { strokes, outline },
+        _ => Seams::default(),
     };
     // The region items partition the opaque visible pieces; every layered fragment of an exact
     // strategy is translucent. A painter layers opaque polygons that overlap: no promise.

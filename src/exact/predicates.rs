@@ -53,6 +53,12 @@ pub fn fallback_count() -> u64 {
     FALLBACKS.with(|c| c.get())
 }
 
+/// Adds `n` to this thread's count: fallbacks counted on other threads for work done on its
+/// behalf ([`crate::visibility::strips`]).
+pub(crate) fn add_fallbacks(n: u64) {
+    FALLBACKS.with(|c| c.set(c.get() + n));
+}
+
 fn count_fallback() {
     FALLBACKS.with(|c| c.set(c.get() + 1));
 }

@@ -26,9 +26,10 @@
 //! is the coverage map's whatever ran (every exact strategy's is), so the drawing's bytes are
 //! the same.
 
-use super::coverage_map::coverage_of;
+use super::coverage_map::visible_pieces;
 use super::grid::sweep_overlapping;
 use super::occlusion::drop_hidden;
+use super::strips::{Strips, solve_strips};
 use super::tiling::tiles_convex_region_once;
 use super::visible_set::{Stats, VisibleSet, put_counts};
 use super::{CoverageMap, Strategy, initial_pieces, translucent_polygons};
@@ -159,7 +160,7 @@ impl Strategy for Auto {
             _ if n == 0 => None,
             Orderer::Warnock => Some(by_subdivision(
                 screen,
-                &overlapping,
+                std::mem::take(&mut overlapping),
                 report,
                 &mut stats,
                 &skipped,
@@ -216,20 +217,26 @@ impl Strategy for Auto {
 /// all of it vanished, and the subdivision drops it wherever one surrounding face hides it.
 fn by_subdivision(
     screen: &ScreenScene,
-    pieces: &[Piece],
+    pieces: Vec<Piece>,
     report: Option<Report>,
     stats: &mut Stats,
     skipped: &str,
     why: &str,
 ) -> Vec<Piece> {
-    let (visible, ws) = warnock_exact::visible_pieces(screen, pieces, report);
+    let n = pieces.len();
+    let strips = Strips::for_pieces(&pieces);
+    let strip_count = strips.count();
+    let (visible, ws) = solve_strips(strips.cut(pieces), report, |strip, report| {
+        Some(warnock_exact::visible_pieces(screen, &strip, report))
+    })
+    .expect("the subdivision never gives up");
     stage(
         stats,
         "order",
         format!(
             "{skipped}done by Warnock's subdivision at object precision for {} ({why}): \
              {} settled by one surrounding face in front, {} hidden pieces dropped",
-            count(pieces.len(), "overlapping piece", "overlapping pieces"),
+            count(n, "overlapping piece", "overlapping pieces"),
             count(ws.settled, "area", "areas"),
             ws.hidden
         ),
@@ -248,6 +255,7 @@ fn by_subdivision(
             ("areas", ws.areas),
             ("areas_settled", ws.settled),
             ("leaves_clipped", ws.leaves),
+            ("strips", strip_count),
         ],
     );
     visible
@@ -264,8 +272,11 @@ fn by_clipping(
     why: &str,
 ) -> Option<Vec<Piece>> {
     let n = pieces.len();
-    let (visible, ws) =
-        weiler_atherton::visible_pieces_within(screen, pieces, report, DEEPEST_CLIP_RECURSION)?;
+    let strips = Strips::for_pieces(&pieces);
+    let strip_count = strips.count();
+    let (visible, ws) = solve_strips(strips.cut(pieces), report, |strip, report| {
+        weiler_atherton::visible_pieces_within(screen, strip, report, DEEPEST_CLIP_RECURSION)
+    })?;
     stage(
         stats,
         "order",
@@ -299,6 +310,7 @@ fn by_clipping(
             ("clipped", ws.clipped),
             ("hidden_parts", ws.hidden),
             ("recursions", ws.recursions),
+            ("strips", strip_count),
         ],
     );
     Some(visible)
@@ -316,8 +328,7 @@ fn by_map(
     why: &str,
 ) -> Vec<Piece> {
     let n = pieces.len();
-    let coverage = coverage_of(screen, pieces, report, occlusion);
-    let cs = coverage.stats.clone();
+    let (visible, cs, strips) = visible_pieces(screen, pieces, report, occlusion);
     stage(
         stats,
         "order",
@@ -360,9 +371,10 @@ fn by_map(
             ("overlap_tests", cs.overlap_tests),
             ("replaced", cs.replaced),
             ("plane_splits", cs.plane_splits),
+            ("strips", strips),
         ],
     );
-    coverage.into_pieces()
+    visible
 }
 
 /// What orders the pieces that are not placed whole.

@@ -17,6 +17,7 @@
 
 use super::coverage::{Coverage, bounds, tie_key};
 use super::initial_pieces;
+use super::strips::Counters;
 use super::visible_set::{Fragment, VisibleSet};
 use crate::exact::Plane;
 use crate::exact::polygon::{Boundary, Piece, Split, separated};
@@ -40,6 +41,17 @@ pub struct BspStats {
     pub depth: usize,
     /// Visible pieces after the coverage pass.
     pub visible_pieces: usize,
+}
+
+impl Counters for BspStats {
+    fn add(&mut self, o: &Self) {
+        self.polygons = self.polygons.max(o.polygons);
+        self.pieces += o.pieces;
+        self.fragments += o.fragments;
+        self.nodes += o.nodes;
+        self.depth = self.depth.max(o.depth);
+        self.visible_pieces += o.visible_pieces;
+    }
 }
 
 /// A splitter's node. The viewer is on every support plane's negative side, so the walk needs
@@ -101,7 +113,7 @@ fn score(splitter: &Splitter, sample: &[&Piece]) -> i64 {
 }
 
 /// The vertical line x = m (or y = m), positive on the larger side.
-fn screen_line(axis: usize, m: i64) -> Line {
+pub(crate) fn screen_line(axis: usize, m: i64) -> Line {
     let (a, b) = if axis == 0 { (1, 0) } else { (0, 1) };
     Line::vertical(&Plane {
         a,

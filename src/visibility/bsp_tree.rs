@@ -2,10 +2,15 @@
 //! ([`Bsp`]), walked front to back into the coverage map, each piece minus the visible pieces in
 //! front of it ([`Bsp::coverage`]). Slower than the coverage map on interpenetrating soups (the
 //! tree cuts each face by the plane of every other it straddles), and independent of it: the
-//! tests hold the two to the same result. Translucent faces are layered as the coverage map
-//! layers them ([`translucent_layer`]).
+//! tests hold the two to the same result. Pieces facing away that the occlusion cells prove
+//! hidden are dropped before the tree is built; large scenes are solved strip by strip on all
+//! cores ([`super::strips`]), a tree per strip. Translucent faces are layered as the coverage
+//! map layers them ([`translucent_layer`]).
 
 use super::bsp::{Bsp, translucent_layer};
+use super::coverage::Coverage;
+use super::occlusion::drop_hidden;
+use super::strips::{Strips, solve_strips};
 use super::visible_set::{Stats, VisibleSet};
 use super::{Strategy, initial_pieces, translucent_polygons};
 use crate::exact::polygon::Piece;
@@ -29,8 +34,20 @@ impl Strategy for BspTree {
         let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
             .into_iter()
             .partition(|p| layered && translucent(p.poly));
-        let bsp = Bsp::build_from(screen, opaque, report);
-        let mut coverage = bsp.coverage(screen);
+        // What the surface facing the eye proves hidden is never cut by the tree.
+        let mut opaque = opaque;
+        let occluded = drop_hidden(screen, &mut opaque);
+        let strips = Strips::for_pieces(&opaque);
+        let strip_count = strips.count();
+        let (visible, st) = solve_strips(strips.cut(opaque), report, |strip, report| {
+            let bsp = Bsp::build_from(screen, strip, report);
+            let mut st = bsp.stats.clone();
+            let visible = bsp.coverage(screen).into_pieces();
+            st.visible_pieces = visible.len();
+            Some((visible, st))
+        })
+        .expect("the BSP never gives up");
+        let mut coverage = Coverage::of_visible(screen, visible);
         let (layered, translucent_bsp) = if layered {
             let (parts, st) = translucent_layer(screen, &mut coverage, see_through, report);
             (parts, Some(st))
@@ -41,12 +58,14 @@ impl Strategy for BspTree {
         let mut put = |k: &str, v: serde_json::Value| {
             stats.insert(k.to_string(), v);
         };
-        let st = &bsp.stats;
+        put("occluded", occluded.into());
+        put("strips", strip_count.into());
         put(
             "translucent_painter_order",
             translucent_bsp.is_some().into(),
         );
-        put("pieces", st.pieces.into());
+        // Every opaque piece, as the coverage map counts: the occluded ones never reach a tree.
+        put("pieces", (st.pieces + occluded).into());
         put("fragments", st.fragments.into());
         put("bsp_nodes", st.nodes.into());
         put("bsp_depth", st.depth.into());

@@ -22,6 +22,7 @@
 pub(crate) use super::live::bounds;
 use super::live::{Live, overlap};
 use super::occlusion::{CELLS_PER_PIECE, Occlusion};
+use super::strips::Counters;
 use crate::exact::polygon::{Piece, Split, separated};
 use crate::project::ScreenScene;
 use std::cmp::Reverse;
@@ -45,6 +46,16 @@ pub struct CoverageStats {
     pub plane_splits: usize,
     /// Pieces proven hidden by the occlusion cells before any cut.
     pub occluded: usize,
+}
+
+impl Counters for CoverageStats {
+    fn add(&mut self, o: &Self) {
+        self.inserted += o.inserted;
+        self.replaced += o.replaced;
+        self.overlap_tests += o.overlap_tests;
+        self.plane_splits += o.plane_splits;
+        self.occluded += o.occluded;
+    }
 }
 
 /// The exact visible set under construction. See the module docs.

@@ -13,6 +13,8 @@
 
 use super::bsp::translucent_layer;
 use super::coverage::{Coverage, CoverageStats, tie_key};
+use super::occlusion::drop_hidden;
+use super::strips::{Strips, solve_strips};
 use super::visible_set::{Stats, VisibleSet};
 use super::{Strategy, initial_pieces, translucent_polygons};
 use crate::exact::polygon::Piece;
@@ -42,21 +44,25 @@ impl Strategy for CoverageMap {
             let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
                 .into_iter()
                 .partition(|p| translucent(p.poly));
-            let mut coverage = coverage_of(screen, opaque, report, true);
+            let (visible, cs, strips) = visible_pieces(screen, opaque, report, true);
+            let mut coverage = Coverage::of_visible(screen, visible);
             let (layered, bsp) = translucent_layer(screen, &mut coverage, see_through, report);
-            put("pieces", (coverage.stats.inserted + bsp.pieces).into());
+            put("pieces", (cs.inserted + bsp.pieces).into());
             put("fragments", bsp.fragments.into());
             put("bsp_nodes", bsp.nodes.into());
             put("bsp_depth", bsp.depth.into());
             put("translucent_parts", layered.len().into());
+            put("strips", strips.into());
             (coverage.into_pieces(), layered)
         } else {
-            let (visible, cs) = visible_set_with_progress(screen, report);
+            let (visible, cs, strips) =
+                visible_pieces(screen, initial_pieces(screen), report, true);
             put("pieces", cs.inserted.into());
             put("replaced", cs.replaced.into());
             put("overlap_tests", cs.overlap_tests.into());
             put("occluded", cs.occluded.into());
-            (visible.pieces, Vec::new())
+            put("strips", strips.into());
+            (visible, Vec::new())
         };
         VisibleSet::exact(screen, pieces, layered, stats, fallbacks)
     }
@@ -74,9 +80,40 @@ pub fn visible_set_with_progress(
     screen: &ScreenScene,
     report: Option<Report>,
 ) -> (VisibleSet, CoverageStats) {
-    let coverage = coverage_of(screen, initial_pieces(screen), report, true);
-    let stats = coverage.stats.clone();
-    (VisibleSet::of_pieces(coverage.into_pieces()), stats)
+    let (pieces, stats, _) = visible_pieces(screen, initial_pieces(screen), report, true);
+    (VisibleSet::of_pieces(pieces), stats)
+}
+
+/// The visible pieces of `pieces` by the coverage map ([`coverage_of`]), strip by strip on all
+/// cores when there are many ([`super::strips`]; the occlusion cells, when `occlusion`, are
+/// then applied to the whole scene first), with the map's counters summed and the number of
+/// strips.
+pub(crate) fn visible_pieces(
+    screen: &ScreenScene,
+    mut pieces: Vec<Piece>,
+    report: Option<Report>,
+    occlusion: bool,
+) -> (Vec<Piece>, CoverageStats, usize) {
+    let strips = Strips::for_pieces(&pieces);
+    if strips.count() == 1 {
+        let coverage = coverage_of(screen, pieces, report, occlusion);
+        let stats = coverage.stats.clone();
+        return (coverage.into_pieces(), stats, 1);
+    }
+    let occluded = if occlusion {
+        drop_hidden(screen, &mut pieces)
+    } else {
+        0
+    };
+    let (visible, mut stats) = solve_strips(strips.cut(pieces), report, |strip, report| {
+        let coverage = coverage_of(screen, strip, report, false);
+        let stats = coverage.stats.clone();
+        Some((coverage.into_pieces(), stats))
+    })
+    .expect("the coverage map never gives up");
+    stats.inserted += occluded;
+    stats.occluded += occluded;
+    (visible, stats, strips.count())
 }
 
 /// The coverage map of `pieces`, inserted nearest corner first, reporting stage "visible set";

@@ -30,6 +30,7 @@ pub(crate) mod live;
 pub mod newell;
 pub(crate) mod occlusion;
 pub mod painter;
+pub mod strips;
 pub mod tiling;
 pub mod visible_set;
 pub mod warnock_exact;
@@ -48,6 +49,7 @@ use crate::exact::polygon::{Boundary, Piece, convex_piece_indices};
 use crate::exact::{GridPoint, Samples};
 use crate::progress::Report;
 use crate::project::ScreenScene;
+use smallvec::SmallVec;
 
 /// An object-space visibility strategy. Its name and whether it is exact (keeps every
 /// [`visible_set`] invariant) are in the method registry ([`crate::methods`]).
@@ -64,20 +66,30 @@ pub trait Strategy: Send + Sync {
 }
 
 /// The visible set of a strategy that resolves opaque pieces only: `resolve` gets the opaque
-/// pieces and returns the visible ones with its counters; translucent polygons are layered over
+/// pieces (of one strip: [`strips`], all cores on a large scene) and returns the visible ones
+/// with its counters, which `put` writes once summed; translucent polygons are layered over
 /// them as the coverage map layers them (a BSP of their pieces, less what the opaque set hides).
-fn opaque_then_layered(
+fn opaque_then_layered<C: strips::Counters>(
     screen: &ScreenScene,
     translucent: &dyn Fn(u32) -> bool,
     report: Option<Report>,
-    resolve: impl FnOnce(Vec<Piece>) -> (Vec<Piece>, Stats),
+    resolve: impl Fn(Vec<Piece>, Option<Report>) -> (Vec<Piece>, C) + Sync,
+    put: impl FnOnce(C, &mut Stats),
 ) -> VisibleSet {
     let fallbacks = crate::exact::predicates::fallback_count();
     let layered = translucent_polygons(screen, translucent);
     let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
         .into_iter()
         .partition(|p| layered && translucent(p.poly));
-    let (visible, mut stats) = resolve(opaque);
+    let strips = strips::Strips::for_pieces(&opaque);
+    let strip_count = strips.count();
+    let (visible, counters) = strips::solve_strips(strips.cut(opaque), report, |strip, report| {
+        Some(resolve(strip, report))
+    })
+    .expect("resolve never gives up");
+    let mut stats = Stats::new();
+    put(counters, &mut stats);
+    stats.insert("strips".into(), strip_count.into());
     stats.insert("translucent_painter_order".into(), layered.into());
     let (pieces, layered) = if layered {
         let mut coverage = coverage::Coverage::of_visible(screen, visible);
@@ -99,32 +111,42 @@ fn translucent_polygons(screen: &ScreenScene, translucent: &dyn Fn(u32) -> bool)
 /// decomposed exactly. Each line's boundary is the polygon's outline side it runs along, or a
 /// diagonal of the decomposition.
 pub fn initial_pieces(screen: &ScreenScene) -> Vec<Piece> {
-    let mut out = Vec::with_capacity(screen.polys.len());
-    for (i, p) in screen.polys.iter().enumerate() {
-        let poly = i as u32;
-        let pts = screen.corners(p);
-        let n = pts.len();
-        // Back faces seen from behind run clockwise on screen: walk them backwards, the k-th
-        // side of the walk running along outline side n - 2 - k (mod n) the other way.
-        let reversed = crate::exact::twice_signed_area(pts).is_le();
-        let ccw: Vec<GridPoint> = if reversed {
-            pts.iter().rev().copied().collect()
-        } else {
-            pts.to_vec()
-        };
-        let outline = |k: usize| Boundary::Outline {
-            poly,
-            side: if reversed { (2 * n - 2 - k) % n } else { k } as u32,
-        };
-        let pieces = convex_piece_indices(&ccw);
-        if let [whole] = &pieces[..]
-            && whole.len() == n
-        {
-            // Convex (the common case): the polygon itself, every side an outline side.
-            out.push(Piece::from_convex(poly, p.plane, &ccw, outline));
-            continue;
-        }
-        for piece in pieces {
+    use rayon::prelude::*;
+    // Polygon by polygon on all cores, collected in polygon order.
+    (0..screen.polys.len())
+        .into_par_iter()
+        .with_min_len(4096)
+        .flat_map_iter(|i| pieces_of_polygon(screen, i as u32))
+        .collect()
+}
+
+/// The convex pieces of screen polygon `poly` ([`initial_pieces`]).
+fn pieces_of_polygon(screen: &ScreenScene, poly: u32) -> SmallVec<[Piece; 1]> {
+    let p = &screen.polys[poly as usize];
+    let pts = screen.corners(p);
+    let n = pts.len();
+    // Back faces seen from behind run clockwise on screen: walk them backwards, the k-th
+    // side of the walk running along outline side n - 2 - k (mod n) the other way.
+    let reversed = crate::exact::twice_signed_area(pts).is_le();
+    let ccw: SmallVec<[GridPoint; 4]> = if reversed {
+        pts.iter().rev().copied().collect()
+    } else {
+        SmallVec::from_slice(pts)
+    };
+    let outline = |k: usize| Boundary::Outline {
+        poly,
+        side: if reversed { (2 * n - 2 - k) % n } else { k } as u32,
+    };
+    let pieces = convex_piece_indices(&ccw);
+    if let [whole] = &pieces[..]
+        && whole.len() == n
+    {
+        // Convex (the common case): the polygon itself, every side an outline side.
+        return smallvec::smallvec![Piece::from_convex(poly, p.plane, &ccw, outline)];
+    }
+    pieces
+        .iter()
+        .map(|piece| {
             let m = piece.len();
             let corners: Vec<GridPoint> = piece.iter().map(|&v| ccw[v]).collect();
             let side = |k: usize| {
@@ -135,10 +157,9 @@ pub fn initial_pieces(screen: &ScreenScene) -> Vec<Piece> {
                     Boundary::Diagonal { poly }
                 }
             };
-            out.push(Piece::from_convex(poly, p.plane, &corners, side));
-        }
-    }
-    out
+            Piece::from_convex(poly, p.plane, &corners, side)
+        })
+        .collect()
 }
 
 /// A grid polygon as a pixel ring (y down, the last point not repeated). Output rounding:

@@ -21,7 +21,8 @@
 //! layered over the result as the coverage map layers them.
 
 use super::coverage::tie_key;
-use super::visible_set::{Stats, VisibleSet, put_counts};
+use super::strips::Counters;
+use super::visible_set::{VisibleSet, put_counts};
 use super::weiler_atherton;
 use super::{Strategy, opaque_then_layered};
 use crate::exact::polygon::{Boundary, Piece, Split};
@@ -57,6 +58,16 @@ pub struct WarnockExactStats {
     pub deepest: usize,
 }
 
+impl Counters for WarnockExactStats {
+    fn add(&mut self, o: &Self) {
+        self.areas += o.areas;
+        self.settled += o.settled;
+        self.leaves += o.leaves;
+        self.hidden += o.hidden;
+        self.deepest = self.deepest.max(o.deepest);
+    }
+}
+
 impl Strategy for WarnockExact {
     fn visible_set(
         &self,
@@ -64,21 +75,24 @@ impl Strategy for WarnockExact {
         translucent: &dyn Fn(u32) -> bool,
         report: Option<Report>,
     ) -> VisibleSet {
-        opaque_then_layered(screen, translucent, report, |opaque| {
-            let (visible, st) = visible_pieces(screen, &opaque, report);
-            let mut stats = Stats::new();
-            put_counts(
-                &mut stats,
-                [
-                    ("areas", st.areas),
-                    ("areas_settled", st.settled),
-                    ("leaves_clipped", st.leaves),
-                    ("hidden_in_areas", st.hidden),
-                    ("deepest_area", st.deepest),
-                ],
-            );
-            (visible, stats)
-        })
+        opaque_then_layered(
+            screen,
+            translucent,
+            report,
+            |opaque, report| visible_pieces(screen, &opaque, report),
+            |st, stats| {
+                put_counts(
+                    stats,
+                    [
+                        ("areas", st.areas),
+                        ("areas_settled", st.settled),
+                        ("leaves_clipped", st.leaves),
+                        ("hidden_in_areas", st.hidden),
+                        ("deepest_area", st.deepest),
+                    ],
+                );
+            },
+        )
     }
 }
 

@@ -26,7 +26,8 @@
 
 use super::coverage::{clip, split_by_depth};
 use super::live::{Live, bounds};
-use super::visible_set::{Stats, VisibleSet, put_counts};
+use super::strips::Counters;
+use super::visible_set::{VisibleSet, put_counts};
 use super::{Strategy, opaque_then_layered};
 use crate::exact::polygon::{Piece, separated};
 use crate::progress::{Report, Ticker};
@@ -51,6 +52,16 @@ pub struct WeilerAthertonStats {
     pub deepest: usize,
 }
 
+impl Counters for WeilerAthertonStats {
+    fn add(&mut self, o: &Self) {
+        self.clip_polygons += o.clip_polygons;
+        self.clipped += o.clipped;
+        self.hidden += o.hidden;
+        self.recursions += o.recursions;
+        self.deepest = self.deepest.max(o.deepest);
+    }
+}
+
 impl Strategy for WeilerAtherton {
     fn visible_set(
         &self,
@@ -58,21 +69,24 @@ impl Strategy for WeilerAtherton {
         translucent: &dyn Fn(u32) -> bool,
         report: Option<Report>,
     ) -> VisibleSet {
-        opaque_then_layered(screen, translucent, report, |opaque| {
-            let (visible, st) = visible_pieces(screen, opaque, report);
-            let mut stats = Stats::new();
-            put_counts(
-                &mut stats,
-                [
-                    ("clip_polygons", st.clip_polygons),
-                    ("clipped", st.clipped),
-                    ("hidden_parts", st.hidden),
-                    ("recursions", st.recursions),
-                    ("deepest_recursion", st.deepest),
-                ],
-            );
-            (visible, stats)
-        })
+        opaque_then_layered(
+            screen,
+            translucent,
+            report,
+            |opaque, report| visible_pieces(screen, opaque, report),
+            |st, stats| {
+                put_counts(
+                    stats,
+                    [
+                        ("clip_polygons", st.clip_polygons),
+                        ("clipped", st.clipped),
+                        ("hidden_parts", st.hidden),
+                        ("recursions", st.recursions),
+                        ("deepest_recursion", st.deepest),
+                    ],
+                );
+            },
+        )
     }
 }
 

@@ -1,0 +1,289 @@
+//! Screen strips: one visible-set problem cut into independent ones, solved on all cores.
+//!
+//! The screen is cut by vertical grid lines x = c (the cuts, chosen from the pieces alone: never
+//! from the number of threads), every piece exactly into its parts between them
+//! ([`Piece::split_by_line`], the cut sides marked [`Boundary::ScreenSplit`]), and each strip's
+//! pieces go to a strategy on their own, in parallel (rayon).
+//!
+//! Invariants:
+//! - What is visible at a point depends only on the pieces over that point, and every exact
+//!   strategy's visible set is defined point by point (the tie rule included), so the union of
+//!   the strips' visible sets is the scene's. The strips' results are concatenated in strip
+//!   order and their counters summed in strip order: the output is the same whatever the
+//!   number of threads, and whichever thread ran which strip.
+//! - The cuts add sides between pieces of one face and collinear vertices on their outlines;
+//!   the drawing merges pieces into maximal straight runs between true corners, so a drawing
+//!   is the same, byte for byte, as the drawing of the same scene solved in one strip.
+//! - Exact fallbacks are counted per thread ([`fallback_count`]): each strip's count is added
+//!   to the calling thread's, so a strategy's `exact_fallbacks` covers all of its strips.
+
+use super::bsp::screen_line;
+use crate::exact::polygon::{Boundary, Piece, Split};
+use crate::exact::predicates::{add_fallbacks, fallback_count};
+use crate::progress::{Report, Ticker};
+use rayon::prelude::*;
+use std::cell::Cell;
+use std::sync::Mutex;
+
+/// About how many pieces make a strip worth its cut: fewer, and the scene is solved whole.
+pub const PIECES_PER_STRIP: usize = 4096;
+/// At most this many strips: each cut adds the parts of the pieces it crosses.
+pub const MOST_STRIPS: usize = 32;
+
+thread_local! {
+    static STRIP_SIZE: Cell<usize> = const { Cell::new(PIECES_PER_STRIP) };
+}
+
+/// Runs `run` with strips of about `pieces_per_strip` pieces (still at most [`MOST_STRIPS`])
+/// for the strategies it calls on this thread; `usize::MAX` solves every scene whole. For tests
+/// and measurements: many strips on a small scene, or none on a large one. The output's
+/// drawing does not change; its counters do.
+pub fn with_strip_size<T>(pieces_per_strip: usize, run: impl FnOnce() -> T) -> T {
+    let before = STRIP_SIZE.with(|s| s.replace(pieces_per_strip.max(1)));
+    // Restored even if `run` panics, so a caught panic leaves no setting behind.
+    struct Restore(usize);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            STRIP_SIZE.with(|s| s.set(self.0));
+        }
+    }
+    let _restore = Restore(before);
+    run()
+}
+
+/// The cuts of a strip set: increasing grid x, one fewer than the strips.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Strips {
+    cuts: Vec<i64>,
+}
+
+impl Strips {
+    /// The strips for `pieces`: one per [`PIECES_PER_STRIP`] pieces ([`with_strip_size`]), at
+    /// most [`MOST_STRIPS`].
+    pub fn for_pieces(pieces: &[Piece]) -> Strips {
+        let size = STRIP_SIZE.with(Cell::get);
+        Strips::with_count(pieces, (pieces.len() / size).clamp(1, MOST_STRIPS))
+    }
+
+    /// At most `count` strips holding about as many of `pieces` each: the cuts are quantiles of
+    /// the pieces' centres in x (equal quantiles give one cut).
+    pub fn with_count(pieces: &[Piece], count: usize) -> Strips {
+        if count <= 1 || pieces.is_empty() {
+            return Strips { cuts: Vec::new() };
+        }
+        let mut centres: Vec<i64> = pieces
+            .iter()
+            .map(|p| {
+                let b = p.bounds();
+                (0.5 * (b[0] + b[2])).floor() as i64
+            })
+            .collect();
+        centres.sort_unstable();
+        let mut cuts: Vec<i64> = (1..count)
+            .map(|k| centres[k * centres.len() / count])
+            .collect();
+        cuts.dedup();
+        Strips { cuts }
+    }
+
+    /// How many strips.
+    pub fn count(&self) -> usize {
+        self.cuts.len() + 1
+    }
+
+    /// The pieces of each strip, left to right: every piece cut exactly by the cuts it crosses,
+    /// its parts in the order of `pieces`.
+    pub fn cut(&self, pieces: Vec<Piece>) -> Vec<Vec<Piece>> {
+        if self.cuts.is_empty() {
+            return vec![pieces];
+        }
+        // Sized first (an upper bound: each piece in every strip its bounds meet), so that each
+        // piece is moved once: pieces are a few hundred bytes each.
+        let boxes: Vec<[f64; 4]> = pieces.iter().map(Piece::bounds).collect();
+        let mut sizes = vec![0usize; self.count()];
+        for b in &boxes {
+            for size in &mut sizes[self.first(b)..=self.last(b)] {
+                *size += 1;
+            }
+        }
+        let mut strips: Vec<Vec<Piece>> = sizes.into_iter().map(Vec::with_capacity).collect();
+        for (piece, b) in pieces.into_iter().zip(&boxes) {
+            let (mut k, last) = (self.first(b), self.last(b));
+            let mut rest = piece;
+            loop {
+                if k == last {
+                    strips[k].push(rest);
+                    break;
+                }
+                match rest.split_by_line(&screen_line(0, self.cuts[k]), Boundary::ScreenSplit) {
+                    Split::Negative | Split::On => {
+                        strips[k].push(rest);
+                        break;
+                    }
+                    Split::Positive => {}
+                    Split::Both(left, right) => {
+                        strips[k].push(left);
+                        rest = right;
+                    }
+                }
+                k += 1;
+            }
+        }
+        strips
+    }
+
+    /// The first strip that bounds `b` meet: cuts left of them cannot meet the piece.
+    fn first(&self, b: &[f64; 4]) -> usize {
+        self.cuts.partition_point(|&c| (c as f64) < b[0])
+    }
+
+    /// The last strip that bounds `b` meet: cuts right of them cannot meet the piece.
+    fn last(&self, b: &[f64; 4]) -> usize {
+        self.cuts.partition_point(|&c| (c as f64) <= b[2])
+    }
+}
+
+/// Counters of a strategy that add up over strips.
+pub(crate) trait Counters: Default + Send {
+    /// Adds another strip's counters (a maximum, such as a depth, takes the larger).
+    fn add(&mut self, other: &Self);
+}
+
+/// Solves each strip with `solve(pieces, report)` on the rayon pool and returns the visible
+/// pieces in strip order with the counters summed, or `None` if a strip's `solve` gave up.
+/// Progress: a single strip is solved on this thread with `report` as it is; several report
+/// stage "visible set" as pieces of finished strips.
+pub(crate) fn solve_strips<C: Counters>(
+    strips: Vec<Vec<Piece>>,
+    report: Option<Report>,
+    solve: impl Fn(Vec<Piece>, Option<Report>) -> Option<(Vec<Piece>, C)> + Sync,
+) -> Option<(Vec<Piece>, C)> {
+    if strips.len() == 1 {
+        let only = strips.into_iter().next().expect("one strip");
+        return solve(only, report);
+    }
+    let total: usize = strips.iter().map(Vec::len).sum();
+    let ticker = Mutex::new((Ticker::new(report, "visible set", total as u64), 0u64));
+    let own_before = fallback_count();
+    // Per strip: what `solve` returned, and the exact fallbacks it counted.
+    type Solved<C> = (Option<(Vec<Piece>, C)>, u64);
+    let solved: Vec<Solved<C>> = strips
+        .into_par_iter()
+        .map(|pieces| {
+            let n = pieces.len() as u64;
+            let before = fallback_count();
+            let out = solve(pieces, None);
+            let fallbacks = fallback_count() - before;
+            let mut t = ticker.lock().unwrap_or_else(|e| e.into_inner());
+            t.1 += n;
+            let done = t.1;
+            t.0.tick(done);
+            (out, fallbacks)
+        })
+        .collect();
+    // Strips solved on this thread are in both counts.
+    let own = fallback_count() - own_before;
+    let (ticker, _) = ticker.into_inner().unwrap_or_else(|e| e.into_inner());
+    ticker.finish();
+    let fallbacks: u64 = solved.iter().map(|s| s.1).sum();
+    add_fallbacks(fallbacks - own);
+    let mut pieces = Vec::new();
+    let mut counters = C::default();
+    for (strip, _) in solved {
+        let (p, c) = strip?;
+        pieces.extend(p);
+        counters.add(&c);
+    }
+    Some((pieces, counters))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exact::GridPoint;
+    use crate::visibility::{initial_pieces, screen_of_polygons};
+    use std::cmp::Ordering;
+
+    /// Twice the area of a piece, from its f64 vertices (a measure for the test, not a decision).
+    fn area2(p: &Piece) -> f64 {
+        let v = p.vertices_f64();
+        (0..v.len())
+            .map(|k| {
+                let (a, b) = (v[k], v[(k + 1) % v.len()]);
+                a[0] * b[1] - a[1] * b[0]
+            })
+            .sum()
+    }
+
+    /// Triangles scattered over a 1000-unit square, some wide enough to cross several cuts.
+    fn triangles() -> Vec<Vec<GridPoint>> {
+        let mut seed = 12345u64;
+        let mut next = move |m: i64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) % m as u64) as i64
+        };
+        (0..60)
+            .map(|k| {
+                let (x, y, w) = (next(1000), next(1000), if k % 5 == 0 { 600 } else { 40 });
+                let gp = |x, y| GridPoint { x, y, z: k };
+                vec![gp(x, y), gp(x + w, y + next(30)), gp(x + next(w), y + 50)]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn cutting_into_strips_keeps_every_piece_whole_and_each_part_in_its_strip() {
+        let screen = screen_of_polygons(triangles());
+        let pieces = initial_pieces(&screen);
+        let strips = Strips::with_count(&pieces, 6);
+        assert_eq!(strips.count(), 6);
+        let parts = strips.cut(pieces.clone());
+        assert!(parts.iter().map(Vec::len).sum::<usize>() > pieces.len() + 10);
+        for (k, strip) in parts.iter().enumerate() {
+            assert!(!strip.is_empty(), "strip {k} is empty");
+            for part in strip {
+                // Exactly between the strip's cuts: no vertex left of its left cut (the line is
+                // positive to its right) or right of its right cut.
+                for i in 0..part.len() {
+                    if k > 0 {
+                        let left = screen_line(0, strips.cuts[k - 1]);
+                        assert_ne!(part.vertex_line_sign(i, &left), Ordering::Less);
+                    }
+                    if k < strips.cuts.len() {
+                        let right = screen_line(0, strips.cuts[k]);
+                        assert_ne!(part.vertex_line_sign(i, &right), Ordering::Greater);
+                    }
+                }
+            }
+        }
+        // Every piece's area is the sum of its parts' (each face is one piece here).
+        for p in &pieces {
+            let sum: f64 = parts
+                .iter()
+                .flatten()
+                .filter(|q| q.poly == p.poly)
+                .map(area2)
+                .sum();
+            assert!(
+                (sum - area2(p)).abs() <= 1e-9 * area2(p),
+                "{sum} vs {}",
+                area2(p)
+            );
+        }
+    }
+
+    #[test]
+    fn strips_come_from_the_pieces_and_the_size_setting_only() {
+        let screen = screen_of_polygons(triangles());
+        let pieces = initial_pieces(&screen);
+        assert_eq!(Strips::for_pieces(&pieces).count(), 1);
+        let ten = with_strip_size(6, || Strips::for_pieces(&pieces));
+        assert_eq!(ten, Strips::with_count(&pieces, 10));
+        // The setting is restored afterwards.
+        assert_eq!(Strips::for_pieces(&pieces).count(), 1);
+        let most = with_strip_size(1, || Strips::for_pieces(&pieces));
+        assert_eq!(most.count(), MOST_STRIPS);
+    }
+}
