@@ -28,11 +28,11 @@
 
 use super::coverage_map::visible_pieces;
 use super::grid::sweep_overlapping;
-use super::occlusion::drop_hidden;
+use super::occlusion::unhidden_pieces;
 use super::strips::{Strips, solve_strips};
 use super::tiling::tiles_convex_region_once;
 use super::visible_set::{Stats, VisibleSet, put_counts};
-use super::{CoverageMap, Strategy, initial_pieces, translucent_polygons};
+use super::{CoverageMap, Strategy, initial_pieces, pieces_of, translucent_polygons};
 use super::{warnock_exact, weiler_atherton};
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::fallback_count;
@@ -95,20 +95,14 @@ impl Strategy for Auto {
             return v;
         }
         stage(&mut stats, "blend", "skipped: every face is opaque".into());
-        let pieces = initial_pieces(screen);
         let whole = whole_meshes(screen);
-        // (No partition when no mesh is placed whole, the common case: it moves every piece.)
-        let (mut visible, mut overlapping): (Vec<Piece>, Vec<Piece>) =
-            if whole.placed.iter().any(|&w| w) {
-                pieces
-                    .into_iter()
-                    .partition(|p| whole.placed[screen.polys[p.poly as usize].mesh as usize])
-            } else {
-                (Vec::new(), pieces)
-            };
+        let (placed_polys, other_polys): (Vec<u32>, Vec<u32>) = (0..screen.polys.len() as u32)
+            .partition(|&k| whole.placed[screen.polys[k as usize].mesh as usize]);
+        let mut visible = pieces_of(screen, &placed_polys);
         let placed = visible.len();
-        // Pieces facing away that the surface facing the eye proves hidden need no orderer.
-        let occluded = drop_hidden(screen, &mut overlapping);
+        // Pieces facing away that the surface facing the eye proves hidden need no orderer (and
+        // hidden triangles never become pieces).
+        let (mut overlapping, occluded) = unhidden_pieces(screen, &other_polys);
         if occluded > 0 {
             let hidden = format!(
                 "{} proven hidden behind the surface facing the eye before any cut (occlusion \

@@ -9,11 +9,10 @@
 
 use super::bsp::{Bsp, translucent_layer};
 use super::coverage::Coverage;
-use super::occlusion::drop_hidden;
+use super::occlusion::unhidden_pieces;
 use super::strips::{Strips, solve_strips};
 use super::visible_set::{Stats, VisibleSet};
-use super::{Strategy, initial_pieces, translucent_polygons};
-use crate::exact::polygon::Piece;
+use super::{Strategy, pieces_of, translucent_polygons};
 use crate::exact::predicates::fallback_count;
 use crate::progress::Report;
 use crate::project::ScreenScene;
@@ -31,12 +30,11 @@ impl Strategy for BspTree {
     ) -> VisibleSet {
         let fallbacks = fallback_count();
         let layered = translucent_polygons(screen, translucent);
-        let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
-            .into_iter()
-            .partition(|p| layered && translucent(p.poly));
+        let (see_through, opaque): (Vec<u32>, Vec<u32>) =
+            (0..screen.polys.len() as u32).partition(|&k| layered && translucent(k));
+        let see_through = pieces_of(screen, &see_through);
         // What the surface facing the eye proves hidden is never cut by the tree.
-        let mut opaque = opaque;
-        let occluded = drop_hidden(screen, &mut opaque);
+        let (opaque, occluded) = unhidden_pieces(screen, &opaque);
         let strips = Strips::for_pieces(&opaque);
         let strip_count = strips.count();
         let (visible, st) = solve_strips(strips.cut(opaque), report, |strip, report| {

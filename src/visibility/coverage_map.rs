@@ -13,10 +13,10 @@
 
 use super::bsp::translucent_layer;
 use super::coverage::{Coverage, CoverageStats, tie_key};
-use super::occlusion::drop_hidden;
+use super::occlusion::{drop_hidden, unhidden_pieces};
 use super::strips::{Strips, solve_strips};
 use super::visible_set::{Stats, VisibleSet};
-use super::{Strategy, initial_pieces, translucent_polygons};
+use super::{Strategy, pieces_of, translucent_polygons};
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::fallback_count;
 use crate::progress::{Report, Ticker};
@@ -41,10 +41,10 @@ impl Strategy for CoverageMap {
         let layered = translucent_polygons(screen, translucent);
         put("translucent_painter_order", layered.into());
         let (pieces, layered) = if layered {
-            let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
-                .into_iter()
-                .partition(|p| translucent(p.poly));
-            let (visible, cs, strips) = visible_pieces(screen, opaque, report, true);
+            let (see_through, opaque): (Vec<u32>, Vec<u32>) =
+                (0..screen.polys.len() as u32).partition(|&k| translucent(k));
+            let see_through = pieces_of(screen, &see_through);
+            let (visible, cs, strips) = visible_pieces_of(screen, &opaque, report);
             let mut coverage = Coverage::of_visible(screen, visible);
             let (layered, bsp) = translucent_layer(screen, &mut coverage, see_through, report);
             put("pieces", (cs.inserted + bsp.pieces).into());
@@ -55,8 +55,8 @@ impl Strategy for CoverageMap {
             put("strips", strips.into());
             (coverage.into_pieces(), layered)
         } else {
-            let (visible, cs, strips) =
-                visible_pieces(screen, initial_pieces(screen), report, true);
+            let all: Vec<u32> = (0..screen.polys.len() as u32).collect();
+            let (visible, cs, strips) = visible_pieces_of(screen, &all, report);
             put("pieces", cs.inserted.into());
             put("replaced", cs.replaced.into());
             put("overlap_tests", cs.overlap_tests.into());
@@ -80,8 +80,24 @@ pub fn visible_set_with_progress(
     screen: &ScreenScene,
     report: Option<Report>,
 ) -> (VisibleSet, CoverageStats) {
-    let (pieces, stats, _) = visible_pieces(screen, initial_pieces(screen), report, true);
+    let all: Vec<u32> = (0..screen.polys.len() as u32).collect();
+    let (pieces, stats, _) = visible_pieces_of(screen, &all, report);
     (VisibleSet::of_pieces(pieces), stats)
+}
+
+/// The visible pieces of the polygons `polys` (increasing) by the coverage map: their pieces
+/// less what the occlusion cells prove hidden ([`unhidden_pieces`]: hidden triangles are never
+/// made into pieces), then [`visible_pieces`]; the dropped pieces count as inserted and occluded.
+fn visible_pieces_of(
+    screen: &ScreenScene,
+    polys: &[u32],
+    report: Option<Report>,
+) -> (Vec<Piece>, CoverageStats, usize) {
+    let (pieces, occluded) = unhidden_pieces(screen, polys);
+    let (visible, mut stats, strips) = visible_pieces(screen, pieces, report, false);
+    stats.inserted += occluded;
+    stats.occluded += occluded;
+    (visible, stats, strips)
 }
 
 /// The visible pieces of `pieces` by the coverage map ([`coverage_of`]), strip by strip on all

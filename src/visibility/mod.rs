@@ -111,12 +111,16 @@ fn translucent_polygons(screen: &ScreenScene, translucent: &dyn Fn(u32) -> bool)
 /// decomposed exactly. Each line's boundary is the polygon's outline side it runs along, or a
 /// diagonal of the decomposition.
 pub fn initial_pieces(screen: &ScreenScene) -> Vec<Piece> {
+    let all: Vec<u32> = (0..screen.polys.len() as u32).collect();
+    pieces_of(screen, &all)
+}
+
+/// The convex pieces of the polygons `polys` ([`initial_pieces`]), in that order.
+pub(crate) fn pieces_of(screen: &ScreenScene, polys: &[u32]) -> Vec<Piece> {
     use rayon::prelude::*;
-    // Polygon by polygon on all cores, collected in polygon order.
-    (0..screen.polys.len())
-        .into_par_iter()
-        .with_min_len(4096)
-        .flat_map_iter(|i| pieces_of_polygon(screen, i as u32))
+    // Polygon by polygon on all cores, collected in order.
+    (polys.par_iter().with_min_len(4096))
+        .flat_map_iter(|&k| pieces_of_polygon(screen, k))
         .collect()
 }
 

@@ -27,6 +27,7 @@
 
 use super::depth;
 use super::live::bounds;
+use super::pieces_of;
 use crate::exact::polygon::Piece;
 use crate::project::ScreenScene;
 use rayon::prelude::*;
@@ -54,6 +55,65 @@ pub(crate) fn drop_hidden(screen: &ScreenScene, pieces: &mut Vec<Piece>) -> usiz
     dropped
 }
 
+/// The first pieces ([`super::initial_pieces`]) of the polygons `polys` (increasing) less those
+/// facing away that the occlusion cells prove hidden, and how many were dropped: the same as
+/// `initial_pieces` then [`drop_hidden`], but a triangle facing away is tried whole and its
+/// piece made only if it may show (most of an open mesh's back faces never become pieces).
+pub(crate) fn unhidden_pieces(screen: &ScreenScene, polys: &[u32]) -> (Vec<Piece>, usize) {
+    let back_facing = back_facing(screen);
+    let tried_whole = |k: u32| back_facing[k as usize] && screen.polys[k as usize].len == 3;
+    let (whole, others): (Vec<u32>, Vec<u32>) = polys.iter().partition(|&&k| tried_whole(k));
+    let mut made = pieces_of(screen, &others);
+    let refs: Vec<&Piece> = made.iter().collect();
+    let frame = |k: u32| {
+        let c = screen.corners(&screen.polys[k as usize]);
+        c.iter()
+            .fold([i64::MAX, i64::MAX, i64::MIN, i64::MIN], |f, p| {
+                [f[0].min(p.x), f[1].min(p.y), f[2].max(p.x), f[3].max(p.y)]
+            })
+    };
+    let parts =
+        (refs.iter().map(|p| (p.poly, p.frame))).chain(whole.iter().map(|&k| (k, frame(k))));
+    let Some(cells) = Occlusion::of_parts(screen, parts, &refs, CELLS_PER_PIECE) else {
+        drop(refs);
+        return (merged(made, pieces_of(screen, &whole)), 0);
+    };
+    drop(refs);
+    // Each test reads the cells only: on all cores.
+    let hidden: Vec<bool> = (made.par_iter().with_min_len(1024))
+        .map(|p| cells.hides(screen, p))
+        .collect();
+    let mut dropped = hidden.iter().filter(|&&h| h).count();
+    let mut hidden = hidden.into_iter();
+    made.retain(|_| !hidden.next().expect("one flag per piece"));
+    let shown: Vec<u32> = (whole.par_iter().with_min_len(1024))
+        .filter(|&&k| !cells.hides_triangle(screen, k))
+        .copied()
+        .collect();
+    dropped += whole.len() - shown.len();
+    (merged(made, pieces_of(screen, &shown)), dropped)
+}
+
+/// Two lists of pieces, each in increasing polygon order, as one in that order (the order the
+/// pieces of all polygons together would have).
+fn merged(a: Vec<Piece>, b: Vec<Piece>) -> Vec<Piece> {
+    if b.is_empty() {
+        return a;
+    }
+    if a.is_empty() {
+        return b;
+    }
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let (mut a, mut b) = (a.into_iter().peekable(), b.into_iter().peekable());
+    while let (Some(p), Some(q)) = (a.peek(), b.peek()) {
+        let next = if p.poly <= q.poly { a.next() } else { b.next() };
+        out.extend(next);
+    }
+    out.extend(a);
+    out.extend(b);
+    out
+}
+
 /// Per polygon of `screen`: is it seen from the back (`ScreenPoly::front`)?
 fn back_facing(screen: &ScreenScene) -> Vec<bool> {
     screen.polys.iter().map(|p| !p.front).collect()
@@ -78,18 +138,27 @@ impl Occlusion {
     /// piece. `None` when no polygon is seen from the back, or none from the front (nothing to
     /// try the test on, or no cover).
     pub fn of(screen: &ScreenScene, pieces: &[&Piece], cells_per_piece: f64) -> Option<Occlusion> {
+        let parts = pieces.iter().map(|p| (p.poly, p.frame));
+        Occlusion::of_parts(screen, parts, pieces, cells_per_piece)
+    }
+
+    /// [`Occlusion::of`] for pieces some of which are not made yet: `parts` are every piece's
+    /// polygon and frame, `pieces` those made, which must include every piece seen from the front
+    /// (the cover); the others are only tried.
+    fn of_parts(
+        screen: &ScreenScene,
+        parts: impl Iterator<Item = (u32, [i64; 4])>,
+        pieces: &[&Piece],
+        cells_per_piece: f64,
+    ) -> Option<Occlusion> {
         let back_facing = back_facing(screen);
         let ccw = |poly: u32| !back_facing[poly as usize];
-        let mut polys: Vec<u32> = pieces.iter().map(|p| p.poly).collect();
-        polys.sort_unstable();
-        polys.dedup();
-        let (front, back): (Vec<u32>, Vec<u32>) = polys.iter().partition(|&&k| ccw(k));
-        if back.is_empty() || front.is_empty() {
-            return None;
-        }
         let mut all = [i64::MAX, i64::MAX, i64::MIN, i64::MIN];
-        for p in pieces {
-            let f = p.frame;
+        let (mut count, mut fronts, mut backs) = (0usize, false, false);
+        for (poly, f) in parts {
+            count += 1;
+            fronts |= ccw(poly);
+            backs |= !ccw(poly);
             all = [
                 all[0].min(f[0]),
                 all[1].min(f[1]),
@@ -97,9 +166,16 @@ impl Occlusion {
                 all[3].max(f[3]),
             ];
         }
-        let side = (pieces.len() as f64 * cells_per_piece)
-            .sqrt()
-            .clamp(1.0, 2048.0) as i64;
+        if !(fronts && backs) {
+            return None;
+        }
+        let front: Vec<u32> = {
+            let mut v: Vec<u32> = pieces.iter().map(|p| p.poly).filter(|&k| ccw(k)).collect();
+            v.sort_unstable();
+            v.dedup();
+            v
+        };
+        let side = (count as f64 * cells_per_piece).sqrt().clamp(1.0, 2048.0) as i64;
         let span = |lo: i64, hi: i64| ((hi - lo).max(1) + side - 1) / side;
         // At least 2 units: a cell's centre is inside it.
         let size = [span(all[0], all[2]).max(2), span(all[1], all[3]).max(2)];
@@ -225,10 +301,31 @@ impl Occlusion {
 
     /// Is `piece` seen from the back and proven hidden behind the cover? (See the module docs.)
     pub fn hides(&self, screen: &ScreenScene, piece: &Piece) -> bool {
-        if !self.back_facing[piece.poly as usize] {
+        self.back_facing[piece.poly as usize]
+            && self.hides_within(bounds(piece), || depth::range(screen, piece)[0])
+    }
+
+    /// [`Occlusion::hides`] for the piece a triangle would make, without making it: its
+    /// bounds are its corners' box (widened as [`bounds`] widens), its nearest depth its nearest
+    /// corner's (the proven range of a piece whose vertices are grid corners, exactly).
+    fn hides_triangle(&self, screen: &ScreenScene, poly: u32) -> bool {
+        if !self.back_facing[poly as usize] {
             return false;
         }
-        let [i0, i1, j0, j1] = self.cells_of(bounds(piece));
+        let c = screen.corners(&screen.polys[poly as usize]);
+        let b = c
+            .iter()
+            .fold([f64::MAX, f64::MAX, f64::MIN, f64::MIN], |b, p| {
+                let (x, y) = (p.x as f64, p.y as f64);
+                [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)]
+            });
+        let near = c.iter().map(|p| p.z).min().unwrap_or(0) as f64;
+        self.hides_within([b[0] - 1.0, b[1] - 1.0, b[2] + 1.0, b[3] + 1.0], || near)
+    }
+
+    /// Do covered cells hold the box `b` (grid units), all nearer than `near()`?
+    fn hides_within(&self, b: [f64; 4], near: impl FnOnce() -> f64) -> bool {
+        let [i0, i1, j0, j1] = self.cells_of(b);
         if i0 < 0 || j0 < 0 || i1 >= self.count[0] || j1 >= self.count[1] {
             return false;
         }
@@ -241,7 +338,7 @@ impl Occlusion {
                 }
             }
         }
-        depth::range(screen, piece)[0] > far
+        near() > far
     }
 }
 
@@ -293,6 +390,47 @@ mod tests {
             [cx, cy + 3, z + 1],
             [cx + 3, cy - 3, z],
         ]
+    }
+
+    #[test]
+    fn triangles_tried_whole_are_dropped_exactly_as_their_pieces_would_be() {
+        // A sheet with a hole, and behind, in front of and around it back-facing triangles and
+        // a back-facing quad (a quad is made into its piece first, a triangle only if shown).
+        let mut tris = front_grid(1000, Some(2));
+        for (cx, cy, z) in [
+            (36, 28, 2000),
+            (36, 28, 500),
+            (63, 28, 2000),
+            (20, 20, 2000),
+        ] {
+            tris.push(back_triangle(cx, cy, z));
+        }
+        // Through the sheet: its nearest corner is in front, its farthest behind.
+        tris.push([[33, 25, 900], [36, 31, 2000], [39, 25, 900]]);
+        let gp = |x, y, z| GridPoint { x, y, z };
+        let mut polys: Vec<Vec<GridPoint>> = (tris.iter())
+            .map(|t| t.iter().map(|&[x, y, z]| gp(x, y, z)).collect())
+            .collect();
+        polys.push(vec![
+            gp(40, 40, 3000),
+            gp(40, 46, 3000),
+            gp(46, 46, 3000),
+            gp(46, 40, 3000),
+        ]);
+        let s = crate::visibility::screen_of_polygons(polys);
+        let mut want = initial_pieces(&s);
+        let dropped = drop_hidden(&s, &mut want);
+        assert_eq!(dropped, 2, "the triangle and the quad behind the sheet");
+        let all: Vec<u32> = (0..s.polys.len() as u32).collect();
+        assert_eq!(unhidden_pieces(&s, &all), (want, dropped));
+        // A subset of the polygons: the cells are made of those alone.
+        let some: Vec<u32> = all.iter().copied().filter(|k| k % 3 != 1).collect();
+        let mut want: Vec<Piece> = initial_pieces(&s)
+            .into_iter()
+            .filter(|p| some.contains(&p.poly))
+            .collect();
+        let dropped = drop_hidden(&s, &mut want);
+        assert_eq!(unhidden_pieces(&s, &some), (want, dropped));
     }
 
     #[test]
