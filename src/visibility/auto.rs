@@ -218,12 +218,8 @@ fn by_subdivision(
     why: &str,
 ) -> Vec<Piece> {
     let n = pieces.len();
-    let strips = Strips::for_pieces(&pieces);
-    let strip_count = strips.count();
-    let (visible, ws) = solve_strips(strips.cut(pieces), report, |strip, report| {
-        Some(warnock_exact::visible_pieces(screen, &strip, report))
-    })
-    .expect("the subdivision never gives up");
+    // Whole, not in strips (see `WarnockExact`).
+    let (visible, ws) = warnock_exact::visible_pieces(screen, &pieces, report);
     stage(
         stats,
         "order",
@@ -249,7 +245,7 @@ fn by_subdivision(
             ("areas", ws.areas),
             ("areas_settled", ws.settled),
             ("leaves_clipped", ws.leaves),
-            ("strips", strip_count),
+            ("strips", 1),
         ],
     );
     visible

@@ -66,13 +66,14 @@ pub trait Strategy: Send + Sync {
 }
 
 /// The visible set of a strategy that resolves opaque pieces only: `resolve` gets the opaque
-/// pieces (of one strip: [`strips`], all cores on a large scene) and returns the visible ones
+/// pieces (of one strip when `in_strips`: [`strips`], all cores on a large scene) and returns the visible ones
 /// with its counters, which `put` writes once summed; translucent polygons are layered over
 /// them as the coverage map layers them (a BSP of their pieces, less what the opaque set hides).
 fn opaque_then_layered<C: strips::Counters>(
     screen: &ScreenScene,
     translucent: &dyn Fn(u32) -> bool,
     report: Option<Report>,
+    in_strips: bool,
     resolve: impl Fn(Vec<Piece>, Option<Report>) -> (Vec<Piece>, C) + Sync,
     put: impl FnOnce(C, &mut Stats),
 ) -> VisibleSet {
@@ -81,7 +82,10 @@ fn opaque_then_layered<C: strips::Counters>(
     let (see_through, opaque): (Vec<Piece>, Vec<Piece>) = initial_pieces(screen)
         .into_iter()
         .partition(|p| layered && translucent(p.poly));
-    let strips = strips::Strips::for_pieces(&opaque);
+    let strips = match in_strips {
+        true => strips::Strips::for_pieces(&opaque),
+        false => strips::Strips::none(),
+    };
     let strip_count = strips.count();
     let (visible, counters) = strips::solve_strips(strips.cut(opaque), report, |strip, report| {
         Some(resolve(strip, report))

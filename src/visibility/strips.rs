@@ -31,17 +31,18 @@ pub const PIECES_PER_STRIP: usize = 4096;
 pub const MOST_STRIPS: usize = 32;
 
 thread_local! {
-    static STRIP_SIZE: Cell<usize> = const { Cell::new(PIECES_PER_STRIP) };
+    /// Set by [`with_strip_size`]; `None`: the default.
+    static STRIP_SIZE: Cell<Option<usize>> = const { Cell::new(None) };
 }
 
-/// Runs `run` with strips of about `pieces_per_strip` pieces (still at most [`MOST_STRIPS`])
-/// for the strategies it calls on this thread; `usize::MAX` solves every scene whole. For tests
-/// and measurements: many strips on a small scene, or none on a large one. The output's
-/// drawing does not change; its counters do.
+/// Runs `run` with strips of about `pieces_per_strip` pieces (still at most [`MOST_STRIPS`],
+/// however large the pieces) for the strategies it calls on this thread; `usize::MAX` solves
+/// every scene whole. For tests and measurements: many strips on a small scene, or none on a
+/// large one. The output's drawing does not change; its counters do.
 pub fn with_strip_size<T>(pieces_per_strip: usize, run: impl FnOnce() -> T) -> T {
-    let before = STRIP_SIZE.with(|s| s.replace(pieces_per_strip.max(1)));
+    let before = STRIP_SIZE.with(|s| s.replace(Some(pieces_per_strip.max(1))));
     // Restored even if `run` panics, so a caught panic leaves no setting behind.
-    struct Restore(usize);
+    struct Restore(Option<usize>);
     impl Drop for Restore {
         fn drop(&mut self) {
             STRIP_SIZE.with(|s| s.set(self.0));
@@ -58,11 +59,30 @@ pub(crate) struct Strips {
 }
 
 impl Strips {
-    /// The strips for `pieces`: one per [`PIECES_PER_STRIP`] pieces ([`with_strip_size`]), at
-    /// most [`MOST_STRIPS`].
+    /// The strips for `pieces`: one per [`PIECES_PER_STRIP`] pieces, at most [`MOST_STRIPS`],
+    /// and fewer (down to one) while the pieces' bounds would meet more than 1.25 strips on
+    /// average; or as [`with_strip_size`] sets.
     pub fn for_pieces(pieces: &[Piece]) -> Strips {
-        let size = STRIP_SIZE.with(Cell::get);
-        Strips::with_count(pieces, (pieces.len() / size).clamp(1, MOST_STRIPS))
+        if let Some(size) = STRIP_SIZE.with(Cell::get) {
+            return Strips::with_count(pieces, (pieces.len() / size).clamp(1, MOST_STRIPS));
+        }
+        let mut count = (pieces.len() / PIECES_PER_STRIP).clamp(1, MOST_STRIPS);
+        if count == 1 {
+            return Strips::none();
+        }
+        // Large pieces (a soup of crossing faces) would be cut into many parts, each strip
+        // holding most of the scene: halve the strips until the cuts add at most a quarter.
+        let boxes: Vec<[f64; 4]> = pieces.iter().map(Piece::bounds).collect();
+        loop {
+            let strips = Strips::with_count(pieces, count);
+            let parts: usize = (boxes.iter())
+                .map(|b| strips.last(b) - strips.first(b) + 1)
+                .sum();
+            if 4 * parts <= 5 * pieces.len() || strips.count() == 1 {
+                return strips;
+            }
+            count /= 2;
+        }
     }
 
     /// At most `count` strips holding about as many of `pieces` each: the cuts are quantiles of
@@ -84,6 +104,11 @@ impl Strips {
             .collect();
         cuts.dedup();
         Strips { cuts }
+    }
+
+    /// One strip: the scene solved whole.
+    pub fn none() -> Strips {
+        Strips { cuts: Vec::new() }
     }
 
     /// How many strips.
@@ -181,12 +206,13 @@ pub(crate) fn solve_strips<C: Counters>(
             (out, fallbacks)
         })
         .collect();
-    // Strips solved on this thread are in both counts.
+    // Strips solved on this thread (a pool thread calling) are in both counts. (`solve` starts
+    // no rayon work of its own, so a thread running a strip runs nothing else meanwhile.)
     let own = fallback_count() - own_before;
     let (ticker, _) = ticker.into_inner().unwrap_or_else(|e| e.into_inner());
     ticker.finish();
     let fallbacks: u64 = solved.iter().map(|s| s.1).sum();
-    add_fallbacks(fallbacks - own);
+    add_fallbacks(fallbacks.saturating_sub(own));
     let mut pieces = Vec::new();
     let mut counters = C::default();
     for (strip, _) in solved {
@@ -272,6 +298,21 @@ mod tests {
                 area2(p)
             );
         }
+    }
+
+    #[test]
+    fn many_small_pieces_get_strips_and_large_crossing_ones_do_not() {
+        let tri = |x: i64, y: i64, w: i64, k: i64| {
+            let gp = |x, y| GridPoint { x, y, z: k };
+            vec![gp(x, y), gp(x + w, y + 1), gp(x + w / 2, y + w)]
+        };
+        let n = 2 * PIECES_PER_STRIP as i64 + 100;
+        // Small triangles on a 100 x 100 grid of spots: as many strips as pieces call for.
+        let small = screen_of_polygons((0..n).map(|k| tri(10 * (k % 97), 10 * (k / 97), 8, k)));
+        assert_eq!(Strips::for_pieces(&initial_pieces(&small)).count(), 2);
+        // Triangles as wide as the scene (a soup): each would be cut in two, so one strip.
+        let wide = screen_of_polygons((0..n).map(|k| tri(k % 50, k / 50, 1000, k)));
+        assert_eq!(Strips::for_pieces(&initial_pieces(&wide)).count(), 1);
     }
 
     #[test]

@@ -75,10 +75,13 @@ impl Strategy for WarnockExact {
         translucent: &dyn Fn(u32) -> bool,
         report: Option<Report>,
     ) -> VisibleSet {
+        // Not in strips: an area along a strip's edge is never surrounded by a piece (the
+        // pieces end at the edge), so it would be divided down to its smallest areas.
         opaque_then_layered(
             screen,
             translucent,
             report,
+            false,
             |opaque, report| visible_pieces(screen, &opaque, report),
             |st, stats| {
                 put_counts(

@@ -73,6 +73,7 @@ impl Strategy for WeilerAtherton {
             screen,
             translucent,
             report,
+            true,
             |opaque, report| visible_pieces(screen, opaque, report),
             |st, stats| {
                 put_counts(
