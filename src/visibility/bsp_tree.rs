@@ -45,12 +45,12 @@ impl Strategy for BspTree {
             Some((visible, st))
         })
         .expect("the BSP never gives up");
-        let mut coverage = Coverage::of_visible(screen, visible);
-        let (layered, translucent_bsp) = if layered {
+        let (visible, layered, translucent_bsp) = if layered {
+            let mut coverage = Coverage::of_visible(screen, visible);
             let (parts, st) = translucent_layer(screen, &mut coverage, see_through, report);
-            (parts, Some(st))
+            (coverage.into_pieces(), parts, Some(st))
         } else {
-            (Vec::new(), None)
+            (visible, Vec::new(), None)
         };
         let mut stats = Stats::new();
         let mut put = |k: &str, v: serde_json::Value| {
@@ -72,6 +72,6 @@ impl Strategy for BspTree {
             put("translucent_fragments", t.fragments.into());
             put("translucent_parts", layered.len().into());
         }
-        VisibleSet::exact(screen, coverage.into_pieces(), layered, stats, fallbacks)
+        VisibleSet::exact(screen, visible, layered, stats, fallbacks)
     }
 }

@@ -45,14 +45,7 @@ pub(crate) fn drop_hidden(screen: &ScreenScene, pieces: &mut Vec<Piece>) -> usiz
     let Some(cells) = Occlusion::of(screen, &refs, CELLS_PER_PIECE) else {
         return 0;
     };
-    // Each piece's test reads the cells only: on all cores.
-    let hidden: Vec<bool> = (pieces.par_iter().with_min_len(1024))
-        .map(|p| cells.hides(screen, p))
-        .collect();
-    let dropped = hidden.iter().filter(|&&h| h).count();
-    let mut hidden = hidden.into_iter();
-    pieces.retain(|_| !hidden.next().expect("one flag per piece"));
-    dropped
+    cells.drop_hidden(screen, pieces)
 }
 
 /// The first pieces ([`super::initial_pieces`]) of the polygons `polys` (increasing) less those
@@ -79,13 +72,7 @@ pub(crate) fn unhidden_pieces(screen: &ScreenScene, polys: &[u32]) -> (Vec<Piece
         return (merged(made, pieces_of(screen, &whole)), 0);
     };
     drop(refs);
-    // Each test reads the cells only: on all cores.
-    let hidden: Vec<bool> = (made.par_iter().with_min_len(1024))
-        .map(|p| cells.hides(screen, p))
-        .collect();
-    let mut dropped = hidden.iter().filter(|&&h| h).count();
-    let mut hidden = hidden.into_iter();
-    made.retain(|_| !hidden.next().expect("one flag per piece"));
+    let mut dropped = cells.drop_hidden(screen, &mut made);
     let shown: Vec<u32> = (whole.par_iter().with_min_len(1024))
         .filter(|&&k| !cells.hides_triangle(screen, k))
         .copied()
@@ -297,6 +284,18 @@ impl Occlusion {
                 f(&mut self.far[(j * self.count[0] + i) as usize], [i, j]);
             }
         }
+    }
+
+    /// Removes from `pieces` those [`Occlusion::hides`]; returns how many.
+    fn drop_hidden(&self, screen: &ScreenScene, pieces: &mut Vec<Piece>) -> usize {
+        // Each test reads the cells only: on all cores.
+        let hidden: Vec<bool> = (pieces.par_iter().with_min_len(1024))
+            .map(|p| self.hides(screen, p))
+            .collect();
+        let dropped = hidden.iter().filter(|&&h| h).count();
+        let mut hidden = hidden.into_iter();
+        pieces.retain(|_| !hidden.next().expect("one flag per piece"));
+        dropped
     }
 
     /// Is `piece` seen from the back and proven hidden behind the cover? (See the module docs.)
