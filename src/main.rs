@@ -97,7 +97,13 @@ struct Cli {
     command: Command,
     /// Threads for the exact visible set of large scenes, solved strip by strip (0: one per
     /// core, or RAYON_NUM_THREADS). The output is the same, byte for byte, whatever the number.
-    #[arg(long, global = true, default_value_t = 0, value_name = "N")]
+    #[arg(
+        long,
+        global = true,
+        default_value_t = 0,
+        value_name = "N",
+        allow_negative_numbers = true
+    )]
     threads: usize,
 }
 

@@ -661,7 +661,11 @@ fn every_shared_cam_file_loads() {
 fn negative_values_reach_each_flags_range_check() {
     // Every case fails before rendering: no --size needed (the --size case tests it).
     let render = ["render", "fixtures/cube.obj", "-o", "-"];
-    let cases: [(&[&str], &str); 13] = [
+    let cases: [(&[&str], &str); 14] = [
+        (
+            &["--threads", "-1"],
+            "invalid value '-1' for '--threads <N>'",
+        ),
         (&["--fov", "-40"], "--fov must be in (0, 180)"),
         (&["--fov=-40"], "--fov must be in (0, 180)"),
         (&["--fov", "0"], "--fov must be in (0, 180)"),
