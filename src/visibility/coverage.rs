@@ -48,6 +48,15 @@ pub struct CoverageStats {
     pub occluded: usize,
 }
 
+impl CoverageStats {
+    /// Counts `n` pieces that the occlusion cells dropped before the map: inserted and occluded,
+    /// as the map counts the pieces its own cells drop.
+    pub(crate) fn dropped_before_insertion(&mut self, n: usize) {
+        self.inserted += n;
+        self.occluded += n;
+    }
+}
+
 impl Counters for CoverageStats {
     fn add(&mut self, o: &Self) {
         self.inserted += o.inserted;

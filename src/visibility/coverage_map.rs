@@ -95,8 +95,7 @@ fn visible_pieces_of(
 ) -> (Vec<Piece>, CoverageStats, usize) {
     let (pieces, occluded) = unhidden_pieces(screen, polys);
     let (visible, mut stats, strips) = visible_pieces(screen, pieces, report, false);
-    stats.inserted += occluded;
-    stats.occluded += occluded;
+    stats.dropped_before_insertion(occluded);
     (visible, stats, strips)
 }
 
@@ -127,8 +126,7 @@ pub(crate) fn visible_pieces(
         Some((coverage.into_pieces(), stats))
     })
     .expect("the coverage map never gives up");
-    stats.inserted += occluded;
-    stats.occluded += occluded;
+    stats.dropped_before_insertion(occluded);
     (visible, stats, strips.count())
 }
 

@@ -66,8 +66,8 @@ pub trait Strategy: Send + Sync {
 }
 
 /// The visible set of a strategy that resolves opaque pieces only: `resolve` gets the opaque
-/// pieces (of one strip when `in_strips`: [`strips`], all cores on a large scene) and returns the visible ones
-/// with its counters, which `put` writes once summed; translucent polygons are layered over
+/// pieces (of one strip when `in_strips`: [`strips`], all cores on a large scene) and returns
+/// the visible ones with its counters, which `put` writes once summed; translucent polygons are layered over
 /// them as the coverage map layers them (a BSP of their pieces, less what the opaque set hides).
 fn opaque_then_layered<C: strips::Counters>(
     screen: &ScreenScene,
