@@ -139,6 +139,43 @@ pub struct Plane {
     pub d: I256,
 }
 
+/// A plane's coefficients, each rounded to the nearest f64 once: for many sign tests against
+/// one plane (the conversions from 128 and 256 bits cost more than the test).
+#[derive(Clone, Copy, Debug)]
+pub struct PlaneApprox([f64; 4]);
+
+impl PlaneApprox {
+    /// The rounded coefficients of `plane`.
+    #[inline]
+    pub fn of(plane: &Plane) -> PlaneApprox {
+        PlaneApprox([
+            i128_to_f64(plane.a),
+            i128_to_f64(plane.b),
+            i128_to_f64(plane.c),
+            i256_to_f64(plane.d),
+        ])
+    }
+
+    /// The sign of `plane`'s equation at a grid point, exactly, where `self` is
+    /// `PlaneApprox::of(plane)`: in f64 when its error bound decides (each coefficient rounded
+    /// once, each product and sum once more: below `6·U` times the sum of the terms'
+    /// magnitudes), otherwise in 256-bit integers.
+    #[inline]
+    pub fn sign_at(&self, plane: &Plane, p: GridPoint) -> std::cmp::Ordering {
+        let [a, b, c, d] = self.0;
+        let terms = [a * p.x as f64, b * p.y as f64, c * p.z as f64, d];
+        let v = terms[0] + terms[1] + terms[2] + terms[3];
+        let bound = 6.0 * U * terms.iter().map(|t| t.abs()).sum::<f64>() * 1.01;
+        if v > bound {
+            std::cmp::Ordering::Greater
+        } else if v < -bound {
+            std::cmp::Ordering::Less
+        } else {
+            plane.value_at(p).cmp(&w256(0))
+        }
+    }
+}
+
 /// A two's-complement integer of `N` little-endian bytes (16 to 128, a multiple of 8) rounded to
 /// the nearest f64, ties to even: the same value as bnum's `as_::<f64>()`, which the f64 filters
 /// rely on (each entry within half an ulp), at a fraction of its cost. The top 128 bits of the
@@ -285,26 +322,10 @@ impl Plane {
             + self.d
     }
 
-    /// The sign of the plane's equation at a grid point, exactly: in f64 when its error bound
-    /// decides (each coefficient rounded once, each product and sum once more: below
-    /// `6·U` times the sum of the terms' magnitudes), otherwise in 256-bit integers.
+    /// The sign of the plane's equation at a grid point, exactly (see [`PlaneApprox::sign_at`]).
     #[inline]
     pub fn sign_at(&self, p: GridPoint) -> std::cmp::Ordering {
-        let terms = [
-            i128_to_f64(self.a) * p.x as f64,
-            i128_to_f64(self.b) * p.y as f64,
-            i128_to_f64(self.c) * p.z as f64,
-            i256_to_f64(self.d),
-        ];
-        let v = terms[0] + terms[1] + terms[2] + terms[3];
-        let bound = 6.0 * U * terms.iter().map(|t| t.abs()).sum::<f64>() * 1.01;
-        if v > bound {
-            std::cmp::Ordering::Greater
-        } else if v < -bound {
-            std::cmp::Ordering::Less
-        } else {
-            self.value_at(p).cmp(&w256(0))
-        }
+        PlaneApprox::of(self).sign_at(self, p)
     }
 
     /// The same plane with its sides swapped.

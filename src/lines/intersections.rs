@@ -23,7 +23,7 @@ use super::along::{At, Carrier};
 use super::tracks::clip_to_convex;
 use crate::exact::polygon::convex_piece_indices;
 use crate::exact::predicates::Line;
-use crate::exact::{GridPoint, Plane};
+use crate::exact::{GridPoint, Plane, PlaneApprox};
 use crate::project::{ScreenPoly, ScreenScene};
 use crate::scene::Scene;
 use std::cmp::Ordering;
@@ -76,18 +76,28 @@ pub fn meetings(
             z.fold(f64::MIN, f64::max) + 1.0,
         ]
     }));
+    let approx: Vec<PlaneApprox> = polys.iter().map(|p| PlaneApprox::of(&p.plane)).collect();
     // Convex parts, made when a pair first needs them.
     let mut parts: Vec<Option<Vec<Vec<Line>>>> = vec![None; polys.len()];
-    // How many welded vertices two faces share (faces have a few corners: no allocation).
+    // Each face's welded vertex ids (distinct, in corner order), made once: every pair asks.
+    let mut weld_start = Vec::with_capacity(scene.faces.len() + 1);
+    let mut welds: Vec<u32> = Vec::with_capacity(3 * scene.faces.len());
+    weld_start.push(0);
+    for face in &scene.faces {
+        let start = welds.len();
+        for &c in scene.face_corners(face) {
+            let v = weld[c as usize];
+            if !welds[start..].contains(&v) {
+                welds.push(v);
+            }
+        }
+        weld_start.push(welds.len());
+    }
+    let welds_of = |f: u32| &welds[weld_start[f as usize]..weld_start[f as usize + 1]];
+    // How many welded vertices two faces share.
     let shared = |fa: u32, fb: u32| {
-        let ids = |f: u32| {
-            let face = &scene.faces[f as usize];
-            scene.face_corners(face).iter().map(|&c| weld[c as usize])
-        };
-        ids(fb)
-            .enumerate()
-            .filter(|&(k, v)| !ids(fb).take(k).any(|u| u == v) && ids(fa).any(|u| u == v))
-            .count()
+        let of_a = welds_of(fa);
+        welds_of(fb).iter().filter(|v| of_a.contains(v)).count()
     };
     let share_an_edge = |fa: u32, fb: u32| shared(fa, fb) >= 2;
     let n = polys.len();
@@ -111,20 +121,20 @@ pub fn meetings(
             return;
         }
         let (pa, pb) = (&polys[a], &polys[b]);
+        // Faces sharing an edge meet along it only (most pairs of a mesh): decided on welded
+        // ids before any plane is evaluated.
+        let shared_corners = shared(pa.face, pb.face);
+        if shared_corners >= 2 {
+            return;
+        }
         // Every polygon lies in its plane (`project` splits the others), so the meeting line's
         // side at a corner is the side of the other plane the corner lies on.
-        if !straddles_plane(screen, pb, &pa.plane) || !straddles_plane(screen, pa, &pb.plane) {
+        if !straddles(screen, pb, pa, &approx[a]) || !straddles(screen, pa, pb, &approx[b]) {
             return;
         }
         let line = Line::cut(pa.plane, pb.plane);
-        match shared(pa.face, pb.face) {
-            0 => {}
-            1 => {
-                if apart_beyond_corner(screen, pa, pb, &line) == Some(true) {
-                    return;
-                }
-            }
-            _ => return,
+        if shared_corners == 1 && apart_beyond_corner(screen, pa, pb, &line) == Some(true) {
+            return;
         }
         let carrier = Carrier::new(line.clone());
         let mut extent = Vec::new();
@@ -172,7 +182,12 @@ fn for_each_overlapping_pair(boxes: &[[f64; 6]], out: &mut impl FnMut(usize, usi
     let mut ids: Vec<u32> = (0..boxes.len() as u32).collect();
     let mut nodes = Vec::new();
     if !boxes.is_empty() {
-        build(boxes, &mut ids, 0, &mut nodes);
+        // Twice the box centres, made once (the median splits compare them many times).
+        let centres: Vec<[f64; 3]> = boxes
+            .iter()
+            .map(|b| [b[0] + b[3], b[1] + b[4], b[2] + b[5]])
+            .collect();
+        build(boxes, &centres, &mut ids, 0, &mut nodes);
         join_self(&nodes, &ids, boxes, 0, out);
     }
 }
@@ -203,7 +218,13 @@ fn meet(a: &[f64; 6], b: &[f64; 6]) -> bool {
 }
 
 /// Builds the subtree over `ids` (starting at `offset` in the whole list); returns its index.
-fn build(boxes: &[[f64; 6]], ids: &mut [u32], offset: usize, nodes: &mut Vec<Node>) -> usize {
+fn build(
+    boxes: &[[f64; 6]],
+    centres: &[[f64; 3]],
+    ids: &mut [u32],
+    offset: usize,
+    nodes: &mut Vec<Node>,
+) -> usize {
     let at = nodes.len();
     nodes.push(Node {
         bounds: union(boxes, ids),
@@ -211,7 +232,7 @@ fn build(boxes: &[[f64; 6]], ids: &mut [u32], offset: usize, nodes: &mut Vec<Nod
         run: (offset, offset + ids.len()),
     });
     if ids.len() > LEAF {
-        let centre = |i: u32, k: usize| boxes[i as usize][k] + boxes[i as usize][k + 3];
+        let centre = |i: u32, k: usize| centres[i as usize][k];
         // The axis along which the box centres spread most.
         let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
         for &i in ids.iter() {
@@ -228,8 +249,8 @@ fn build(boxes: &[[f64; 6]], ids: &mut [u32], offset: usize, nodes: &mut Vec<Nod
             centre(a, axis).total_cmp(&centre(b, axis)).then(a.cmp(&b))
         });
         let (left, right) = ids.split_at_mut(mid);
-        let l = build(boxes, left, offset, nodes);
-        let r = build(boxes, right, offset + mid, nodes);
+        let l = build(boxes, centres, left, offset, nodes);
+        let r = build(boxes, centres, right, offset + mid, nodes);
         nodes[at].children = Some((l, r));
     }
     at
@@ -437,11 +458,23 @@ fn depth_range(screen: &ScreenScene, p: &ScreenPoly) -> [f64; 2] {
     [lo, hi]
 }
 
-/// Do the polygon's corners lie strictly on both sides of `plane`? Exact.
-fn straddles_plane(screen: &ScreenScene, p: &ScreenPoly, plane: &Plane) -> bool {
+/// Do the corners of `p` lie strictly on both sides of `other`'s plane? Exact. A corner that
+/// is also a corner of `other` lies in its plane (every polygon lies exactly in its plane), so
+/// it is skipped: it is where the filter would always fall back to exact arithmetic.
+/// `approx` is `other`'s plane rounded.
+fn straddles(
+    screen: &ScreenScene,
+    p: &ScreenPoly,
+    other: &ScreenPoly,
+    approx: &PlaneApprox,
+) -> bool {
+    let theirs = screen.corners(other);
     let (mut pos, mut neg) = (false, false);
     for c in screen.corners(p) {
-        match plane.sign_at(*c) {
+        if theirs.contains(c) {
+            continue;
+        }
+        match approx.sign_at(&other.plane, *c) {
             Ordering::Greater => pos = true,
             Ordering::Less => neg = true,
             Ordering::Equal => {}
