@@ -59,6 +59,12 @@ pub(crate) fn add_fallbacks(n: u64) {
     FALLBACKS.with(|c| c.set(c.get() + n));
 }
 
+/// Sets this thread's count back to `n`, an earlier [`fallback_count`]: work thrown away whose
+/// extent depended on other threads' timing, so that the counts stay deterministic.
+pub(crate) fn reset_fallbacks(n: u64) {
+    FALLBACKS.with(|c| c.set(n));
+}
+
 fn count_fallback() {
     FALLBACKS.with(|c| c.set(c.get() + 1));
 }

@@ -38,6 +38,7 @@ use crate::exact::polygon::Piece;
 use crate::exact::predicates::fallback_count;
 use crate::progress::Report;
 use crate::project::ScreenScene;
+use std::sync::atomic::AtomicBool;
 
 /// The automatic strategy. See the module docs.
 #[derive(Clone, Copy, Debug, Default)]
@@ -264,8 +265,16 @@ fn by_clipping(
     let n = pieces.len();
     let strips = Strips::for_pieces(&pieces);
     let strip_count = strips.count();
+    // One strip giving up gives up the whole: the others stop at their next clip polygon.
+    let stop = AtomicBool::new(false);
     let (visible, ws) = solve_strips(strips.cut(pieces), report, |strip, report| {
-        weiler_atherton::visible_pieces_within(screen, strip, report, DEEPEST_CLIP_RECURSION)
+        weiler_atherton::visible_pieces_within_or_stopped(
+            screen,
+            strip,
+            report,
+            DEEPEST_CLIP_RECURSION,
+            &stop,
+        )
     })?;
     stage(
         stats,

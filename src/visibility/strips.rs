@@ -19,7 +19,7 @@
 
 use super::bsp::screen_line;
 use crate::exact::polygon::{Boundary, Piece, Split};
-use crate::exact::predicates::{add_fallbacks, fallback_count};
+use crate::exact::predicates::{add_fallbacks, fallback_count, reset_fallbacks};
 use crate::progress::{Report, Ticker};
 use rayon::prelude::*;
 use std::cell::Cell;
@@ -175,7 +175,8 @@ pub(crate) trait Counters: Default + Send {
 }
 
 /// Solves each strip with `solve(pieces, report)` on the rayon pool and returns the visible
-/// pieces in strip order with the counters summed, or `None` if a strip's `solve` gave up.
+/// pieces in strip order with the counters summed, or `None` if a strip's `solve` gave up (its
+/// exact fallbacks then not counted: `solve` may stop other strips early).
 /// Progress: a single strip is solved on this thread with `report` as it is; several report
 /// stage "visible set" as pieces of finished strips.
 pub(crate) fn solve_strips<C: Counters>(
@@ -211,6 +212,12 @@ pub(crate) fn solve_strips<C: Counters>(
     let own = fallback_count() - own_before;
     let (ticker, _) = ticker.into_inner().unwrap_or_else(|e| e.into_inner());
     ticker.finish();
+    if solved.iter().any(|s| s.0.is_none()) {
+        // Given up: how far the other strips got depends on timing (a strip that gives up may
+        // stop the others), so nothing of the attempt is counted.
+        reset_fallbacks(own_before);
+        return None;
+    }
     let fallbacks: u64 = solved.iter().map(|s| s.1).sum();
     add_fallbacks(fallbacks.saturating_sub(own));
     let mut pieces = Vec::new();
@@ -227,6 +234,7 @@ pub(crate) fn solve_strips<C: Counters>(
 mod tests {
     use super::*;
     use crate::exact::GridPoint;
+    use crate::visibility::coverage::CoverageStats;
     use crate::visibility::{initial_pieces, screen_of_polygons};
     use std::cmp::Ordering;
 
@@ -257,6 +265,29 @@ mod tests {
                 vec![gp(x, y), gp(x + w, y + next(30)), gp(x + next(w), y + 50)]
             })
             .collect()
+    }
+
+    /// Exact fallbacks counted in strips reach the caller, except when a strip gave up: how far
+    /// the others got then depends on timing, and counting it would make the counts vary.
+    #[test]
+    fn fallbacks_of_solved_strips_are_counted_and_of_a_given_up_attempt_are_not() {
+        let strips = || vec![Vec::new(), Vec::new(), Vec::new()];
+        let before = fallback_count();
+        let solved = solve_strips(strips(), None, |_, _| {
+            add_fallbacks(5);
+            Some((Vec::new(), CoverageStats::default()))
+        });
+        assert!(solved.is_some());
+        assert_eq!(fallback_count() - before, 15);
+        let before = fallback_count();
+        let calls = std::sync::atomic::AtomicUsize::new(0);
+        let solved = solve_strips(strips(), None, |_, _| {
+            add_fallbacks(5);
+            let k = calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            (k != 1).then(|| (Vec::new(), CoverageStats::default()))
+        });
+        assert!(solved.is_none());
+        assert_eq!(fallback_count(), before);
     }
 
     #[test]

@@ -32,6 +32,7 @@ use super::{Strategy, opaque_then_layered};
 use crate::exact::polygon::{Piece, separated};
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
+use std::sync::atomic::{AtomicBool, Ordering as AtomicOrdering};
 
 /// Weiler–Atherton. See the module docs.
 #[derive(Clone, Copy, Debug, Default)]
@@ -111,6 +112,51 @@ pub fn visible_pieces_within(
     report: Option<Report>,
     deepest_allowed: usize,
 ) -> Option<(Vec<Piece>, WeilerAthertonStats)> {
+    let limit = Limit {
+        deepest: deepest_allowed,
+        stop: None,
+    };
+    within_limit(screen, pieces, report, &limit)
+}
+
+/// [`visible_pieces_within`] for one strip of a scene: also given up as soon as `stop` is set,
+/// and sets it when it gives up itself (the other strips' work would be thrown away).
+pub(crate) fn visible_pieces_within_or_stopped(
+    screen: &ScreenScene,
+    pieces: Vec<Piece>,
+    report: Option<Report>,
+    deepest_allowed: usize,
+    stop: &AtomicBool,
+) -> Option<(Vec<Piece>, WeilerAthertonStats)> {
+    let limit = Limit {
+        deepest: deepest_allowed,
+        stop: Some(stop),
+    };
+    let solved = within_limit(screen, pieces, report, &limit);
+    if solved.is_none() {
+        stop.store(true, AtomicOrdering::Relaxed);
+    }
+    solved
+}
+
+/// When clipping gives up: past `deepest` levels of recursion, or once `stop` is set.
+struct Limit<'a> {
+    deepest: usize,
+    stop: Option<&'a AtomicBool>,
+}
+
+impl Limit<'_> {
+    fn reached(&self, level: usize) -> bool {
+        level > self.deepest || self.stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed))
+    }
+}
+
+fn within_limit(
+    screen: &ScreenScene,
+    pieces: Vec<Piece>,
+    report: Option<Report>,
+    limit: &Limit,
+) -> Option<(Vec<Piece>, WeilerAthertonStats)> {
     let mut st = WeilerAthertonStats::default();
     let mut out = Vec::new();
     let mut ticker = Ticker::new(report, "visible set", screen.polys.len() as u64);
@@ -120,7 +166,7 @@ pub fn visible_pieces_within(
         None,
         &mut out,
         &mut st,
-        (0, deepest_allowed),
+        (0, limit),
         &mut |done| ticker.tick(done),
     );
     ticker.finish();
@@ -186,18 +232,18 @@ impl Chains {
 }
 
 /// Writes the visible parts of `pieces` to `out`, taking `first`'s polygon as the first clip
-/// polygon when given. `done(k)`: k clip polygons of this level are done. `(level, deepest
-/// allowed)`: false, with `out` incomplete, when the recursion would go deeper.
+/// polygon when given. `done(k)`: k clip polygons of this level are done. `(level, limit)`:
+/// false, with `out` incomplete, when the limit is reached (checked at every clip polygon).
 fn resolve(
     screen: &ScreenScene,
     pieces: Vec<Piece>,
     first: Option<u32>,
     out: &mut Vec<Piece>,
     st: &mut WeilerAthertonStats,
-    (level, deepest_allowed): (usize, usize),
+    (level, limit): (usize, &Limit),
     done: &mut dyn FnMut(u64),
 ) -> bool {
-    if level > deepest_allowed {
+    if limit.reached(level) {
         return false;
     }
     st.deepest = st.deepest.max(level);
@@ -224,6 +270,9 @@ fn resolve(
     let mut near = Vec::new();
     let mut outside = Vec::new();
     for c in 0..ranks {
+        if limit.reached(level) {
+            return false;
+        }
         done(c as u64);
         let region: Vec<Piece> = chains.drain(c).filter_map(|v| list.take(v)).collect();
         if region.is_empty() {
@@ -271,11 +320,45 @@ fn resolve(
             Some(offender),
             out,
             st,
-            (level + 1, deepest_allowed),
+            (level + 1, limit),
             &mut |_| {},
         ) {
             return false;
         }
     }
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exact::GridPoint;
+    use crate::visibility::{initial_pieces, screen_of_polygons};
+
+    fn grid(x: i64, y: i64, z: i64) -> GridPoint {
+        GridPoint { x, y, z }
+    }
+
+    /// A strip of a scene stops as soon as another strip gave up (its work would be thrown
+    /// away), and one that gives up tells the others.
+    #[test]
+    fn a_strip_stops_once_another_gave_up_and_tells_the_others_when_it_gives_up() {
+        // Two triangles passing through each other: one level of recursion.
+        let crossing = screen_of_polygons([
+            vec![grid(0, 0, 10), grid(100, 0, 10), grid(0, 100, 10)],
+            vec![grid(0, 0, 0), grid(100, 0, 20), grid(0, 100, 0)],
+        ]);
+        let pieces = initial_pieces(&crossing);
+        let stop = AtomicBool::new(false);
+        let solved = visible_pieces_within_or_stopped(&crossing, pieces.clone(), None, 1, &stop);
+        assert!(solved.is_some() && !stop.load(AtomicOrdering::Relaxed));
+        let stopped = AtomicBool::new(true);
+        let solved = visible_pieces_within_or_stopped(&crossing, pieces.clone(), None, 1, &stopped);
+        assert!(solved.is_none(), "another strip gave up");
+        let solved = visible_pieces_within_or_stopped(&crossing, pieces, None, 0, &stop);
+        assert!(
+            solved.is_none() && stop.load(AtomicOrdering::Relaxed),
+            "gave up and told"
+        );
+    }
 }
