@@ -251,6 +251,101 @@ fn scene_of_arrays(
 #[derive(Clone)]
 struct Camera {
     spec: CameraSpec,
+    /// A projection matrix (`Camera.from_matrix`, `Camera.from_matplotlib`): scene points map
+    /// to `M @ [x, y, z, 1]`, then divided by w.
+    projection: Option<[[f64; 4]; 4]>,
+}
+
+/// Where the image of a projection camera lies in its projected coordinates: pixel (px, py) is
+/// the point (cx + (px - w/2)·unit, cy - (py - h/2)·unit).
+#[derive(Clone, Copy, Debug)]
+struct Frame {
+    centre: [f64; 2],
+    unit: f64,
+    size: (u32, u32),
+}
+
+impl Frame {
+    fn point(&self, [px, py]: [f64; 2]) -> [f64; 2] {
+        let (w, h) = (self.size.0 as f64, self.size.1 as f64);
+        [
+            self.centre[0] + (px - 0.5 * w) * self.unit,
+            self.centre[1] - (py - 0.5 * h) * self.unit,
+        ]
+    }
+}
+
+/// A scene and the engine's camera for it, with the frame of a projection camera.
+struct Placed {
+    scene: Arc<sightline::Scene>,
+    camera: sightline::Camera,
+    frame: Option<Frame>,
+}
+
+impl Camera {
+    /// The engine's camera for `scene`. A projection camera maps the scene's vertices through
+    /// its matrix (each coordinate rounded once in f64: the input rounding of this path) with
+    /// depth negated, and looks at them orthographically down the depth axis, framing their box.
+    fn place(&self, scene: &Arc<sightline::Scene>) -> Result<Placed, String> {
+        let Some(m) = self.projection else {
+            let camera = self.spec.resolve_for(scene).map_err(|e| e.to_string())?;
+            return Ok(Placed {
+                scene: scene.clone(),
+                camera,
+                frame: None,
+            });
+        };
+        let mut projected = (**scene).clone();
+        for (i, p) in projected.positions.iter_mut().enumerate() {
+            let h: Vec<f64> = m
+                .iter()
+                .map(|r| r[0] * p.x + r[1] * p.y + r[2] * p.z + r[3])
+                .collect();
+            let q = DVec3::new(h[0] / h[3], h[1] / h[3], -h[2] / h[3]);
+            if h[3].is_nan() || h[3] <= 0.0 || !q.is_finite() {
+                return Err(format!(
+                    "vertex {i} {:?} is not in front of the projection (w = {})",
+                    p.to_array(),
+                    h[3]
+                ));
+            }
+            *p = q;
+        }
+        // Corner normals were of the unprojected scene.
+        projected.corner_normals.clear();
+        let (lo, hi) = projected
+            .bounds()
+            .ok_or_else(|| "the scene has no vertex".to_string())?;
+        let size = self.spec.size.unwrap_or(sightline::camera::DEFAULT_SIZE);
+        let aspect = size.0 as f64 / size.1 as f64;
+        let extent = hi - lo;
+        // A little margin, so that no region touches the image's edge.
+        let height = 1.02 * extent.y.max(extent.x / aspect);
+        if !(height > 0.0 && height.is_finite()) {
+            return Err("the projected scene has no extent on screen".into());
+        }
+        let centre = 0.5 * (lo + hi);
+        let depth = extent.z.max(height);
+        let spec = CameraSpec {
+            eye: Some(DVec3::new(centre.x, centre.y, hi.z + depth)),
+            target: Some(DVec3::new(centre.x, centre.y, lo.z)),
+            up: Some(DVec3::Y),
+            ortho_height: Some(height),
+            size: Some(size),
+            ..CameraSpec::default()
+        };
+        let projected = Arc::new(projected);
+        let camera = spec.resolve_for(&projected).map_err(|e| e.to_string())?;
+        Ok(Placed {
+            scene: projected,
+            camera,
+            frame: Some(Frame {
+                centre: [centre.x, centre.y],
+                unit: height / size.1 as f64,
+                size,
+            }),
+        })
+    }
 }
 
 fn vec3(v: Option<[f64; 3]>) -> Option<DVec3> {
@@ -300,7 +395,63 @@ impl Camera {
             ..CameraSpec::default()
         };
         spec.check(None).map_err(err)?;
-        Ok(Camera { spec })
+        Ok(Camera {
+            spec,
+            projection: None,
+        })
+    }
+
+    /// A camera from a 4x4 projection matrix `M` (a scene point p maps to `M @ [p, 1]`, then
+    /// divided by w, which must be positive: in front), as graphics APIs and matplotlib build
+    /// them; x right, y up and depth growing away from the viewer in the projected coordinates.
+    /// `size`: the image in pixels. With this camera, `coords="projected"` gives regions and
+    /// strokes in the projected x and y.
+    #[staticmethod]
+    #[pyo3(signature = (matrix, size = (1024, 1024)))]
+    fn from_matrix(matrix: &Bound<'_, PyAny>, size: (u32, u32)) -> PyResult<Camera> {
+        let np = matrix.py().import("numpy")?;
+        let m = np.call_method1("ascontiguousarray", (matrix, "float64"))?;
+        let m: PyReadonlyArray2<f64> = m
+            .extract()
+            .map_err(|_| err("matrix must be a 4x4 array of numbers"))?;
+        if m.shape() != [4, 4] {
+            return Err(err(format!("matrix must be 4x4, got {:?}", m.shape())));
+        }
+        let m = m.as_array();
+        let rows: [[f64; 4]; 4] = std::array::from_fn(|i| std::array::from_fn(|j| m[[i, j]]));
+        if rows.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(err("matrix has a value that is not finite"));
+        }
+        if size.0 == 0 || size.1 == 0 {
+            return Err(err(format!("size must be positive, got {size:?}")));
+        }
+        Ok(Camera {
+            spec: CameraSpec {
+                size: Some(size),
+                ..CameraSpec::default()
+            },
+            projection: Some(rows),
+        })
+    }
+
+    /// The camera of a matplotlib 3D axes as it is now: its own projection matrix
+    /// (`ax.get_proj()`, data coordinates to its projected ones, the same matrix mplot3d draws
+    /// with) and, unless given, the axes' size in pixels. Regions and strokes with
+    /// `coords="projected"` are in the coordinates mplot3d draws its 2D paths in.
+    #[staticmethod]
+    #[pyo3(signature = (ax, size = None))]
+    fn from_matplotlib(ax: &Bound<'_, PyAny>, size: Option<(u32, u32)>) -> PyResult<Camera> {
+        let matrix = ax.call_method0("get_proj")?;
+        let size = match size {
+            Some(s) => s,
+            None => {
+                let bbox = ax.getattr("bbox")?;
+                let w: f64 = bbox.getattr("width")?.extract()?;
+                let h: f64 = bbox.getattr("height")?.extract()?;
+                (w.round().max(1.0) as u32, h.round().max(1.0) as u32)
+            }
+        };
+        Camera::from_matrix(&matrix, size)
     }
 
     /// Image size in pixels: (width, height).
@@ -311,6 +462,9 @@ impl Camera {
 
     fn __repr__(&self) -> String {
         let s = &self.spec;
+        if let Some(m) = self.projection {
+            return format!("Camera(matrix={m:?}, size={:?})", self.size());
+        }
         format!(
             "Camera(eye={:?}, target={:?}, up={:?}, fov={:?}, ortho={:?}, size={:?}, view={:?})",
             s.eye.map(|v| v.to_array()),
@@ -358,10 +512,11 @@ struct Region {
 
 #[pymethods]
 impl Region {
-    /// The rings, each a (k, 2) float64 array of pixel coordinates (not closed: the last point
-    /// is not repeated); the first is the outer boundary, the rest are holes. Outer rings
-    /// have a positive signed area on the numbers as given (x right, y down: clockwise as
-    /// seen), holes a negative one.
+    /// The rings, each a (k, 2) float64 array of points (pixels, y down, unless `coords` asked
+    /// for others; not closed: the last point is not repeated); the first is the outer
+    /// boundary, the rest are holes. In pixels, outer rings have a positive signed area (x
+    /// right, y down: clockwise as seen) and holes a negative one; in projected coordinates (y
+    /// up) the signs are the other way round.
     #[getter]
     fn rings<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyArray2<f64>>>> {
         self.rings.iter().map(|r| ring_array(py, r)).collect()
@@ -472,36 +627,60 @@ fn exact_strategy(name: &str) -> PyResult<&'static dyn sightline::Strategy> {
     }
 }
 
+/// Maps pixel points to the coordinates asked for: "pixel" as they are, "projected" through a
+/// projection camera's frame.
+fn coordinates(coords: &str, frame: Option<Frame>) -> PyResult<impl Fn([f64; 2]) -> [f64; 2]> {
+    let frame = match (coords, frame) {
+        ("pixel", _) => None,
+        ("projected", Some(f)) => Some(f),
+        ("projected", None) => {
+            return Err(err(
+                "coords=\"projected\" needs a projection camera (Camera.from_matrix or Camera.from_matplotlib)",
+            ));
+        }
+        (other, _) => {
+            return Err(err(format!(
+                "coords must be \"pixel\" or \"projected\" (got {other:?})"
+            )));
+        }
+    };
+    Ok(move |p| frame.map_or(p, |f| f.point(p)))
+}
+
 /// The exact visible regions of `scene` seen by `camera`: one `Region` per connected visible
 /// part of a face, in drawing order (back to front). `method`: any exact strategy ("auto",
 /// "coverage", "bsp", "newell", "weiler-atherton", "warnock-exact"): all give the same
-/// regions.
+/// regions. `coords`: "pixel" (y down), or "projected" for a projection camera (its projected
+/// x and y: matplotlib's 2D drawing coordinates for `Camera.from_matplotlib`).
 #[pyfunction]
-#[pyo3(signature = (scene, camera, method = "auto"))]
+#[pyo3(signature = (scene, camera, method = "auto", coords = "pixel"))]
 fn visible_set(
     py: Python<'_>,
     scene: &Scene,
     camera: &Camera,
     method: &str,
+    coords: &str,
 ) -> PyResult<Vec<Region>> {
     let strategy = exact_strategy(method)?;
     let scene = scene.inner.clone();
-    let spec = camera.spec.clone();
-    let drawing = py.detach(move || -> sightline::Result<_> {
-        let camera = spec.resolve_for(&scene)?;
-        let prepared = pipeline::prepare(&scene, &camera, CullMode::Auto);
-        let picture = draw::picture(
-            strategy,
-            &scene,
-            &prepared.screen,
-            &camera,
-            Fill::Shade,
-            DrawOptions::per_face(),
-            None,
-        );
-        Ok(picture.drawing)
-    });
-    let drawing = drawing.map_err(err)?;
+    let camera = camera.clone();
+    let (drawing, frame) = py
+        .detach(move || -> Result<_, String> {
+            let placed = camera.place(&scene)?;
+            let prepared = pipeline::prepare(&placed.scene, &placed.camera, CullMode::Auto);
+            let picture = draw::picture(
+                strategy,
+                &placed.scene,
+                &prepared.screen,
+                &placed.camera,
+                Fill::Shade,
+                DrawOptions::per_face(),
+                None,
+            );
+            Ok((picture.drawing, placed.frame))
+        })
+        .map_err(err)?;
+    let map = coordinates(coords, frame)?;
     Ok(drawing
         .items
         .iter()
@@ -510,7 +689,10 @@ fn visible_set(
                 face: item.face,
                 color: (item.color[0], item.color[1], item.color[2]),
                 opacity: item.opacity,
-                rings,
+                rings: rings
+                    .into_iter()
+                    .map(|r| r.into_iter().map(&map).collect())
+                    .collect(),
             })
         })
         .collect())
@@ -537,7 +719,8 @@ struct Stroke {
 
 #[pymethods]
 impl Stroke {
-    /// The polyline, a (k, 2) float64 array of pixel coordinates (y down).
+    /// The polyline, a (k, 2) float64 array of points (pixels, y down, unless `coords` asked
+    /// for others).
     #[getter]
     fn points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         ring_array(py, &self.points)
@@ -559,7 +742,7 @@ impl Stroke {
 /// differ by more than `crease` degrees) and material edges. `qi_max`: hidden strokes only up
 /// to that many faces deep, each with its exact count.
 #[pyfunction]
-#[pyo3(signature = (scene, camera, hidden = true, crease = 30.0, qi_max = None))]
+#[pyo3(signature = (scene, camera, hidden = true, crease = 30.0, qi_max = None, coords = "pixel"))]
 fn lines(
     py: Python<'_>,
     scene: &Scene,
@@ -567,6 +750,7 @@ fn lines(
     hidden: bool,
     crease: f64,
     qi_max: Option<u32>,
+    coords: &str,
 ) -> PyResult<Vec<Stroke>> {
     if !(0.0..=180.0).contains(&crease) {
         return Err(err(format!(
@@ -580,13 +764,16 @@ fn lines(
         cull: CullMode::Auto,
     };
     let scene = scene.inner.clone();
-    let spec = camera.spec.clone();
-    let drawn = py
-        .detach(move || -> sightline::Result<_> {
-            let camera = spec.resolve_for(&scene)?;
-            line_drawing(&scene, &camera, &options, None)
+    let camera = camera.clone();
+    let (drawn, frame) = py
+        .detach(move || -> Result<_, String> {
+            let placed = camera.place(&scene)?;
+            let drawn = line_drawing(&placed.scene, &placed.camera, &options, None)
+                .map_err(|e| e.to_string())?;
+            Ok((drawn, placed.frame))
         })
         .map_err(err)?;
+    let map = coordinates(coords, frame)?;
     Ok(drawn
         .drawing
         .strokes
@@ -596,7 +783,7 @@ fn lines(
             visible: s.visibility == sightline::lines::Visibility::Visible,
             qi: s.qi,
             closed: s.closed,
-            points: s.points,
+            points: s.points.into_iter().map(&map).collect(),
         })
         .collect())
 }
@@ -624,12 +811,18 @@ fn rendered(
         options.lines = Some(LineOptions::default());
     }
     let scene = scene.inner.clone();
-    let spec = camera.spec.clone();
+    let camera = camera.clone();
     py.detach(move || -> Result<Vec<u8>, String> {
-        let camera = spec.resolve_for(&scene).map_err(|e| e.to_string())?;
-        let prepared = pipeline::prepare(&scene, &camera, CullMode::Auto);
-        let picture = render::render(&scene, &camera, &prepared.screen, &options, None)
-            .map_err(|e| e.to_string())?;
+        let placed = camera.place(&scene)?;
+        let prepared = pipeline::prepare(&placed.scene, &placed.camera, CullMode::Auto);
+        let picture = render::render(
+            &placed.scene,
+            &placed.camera,
+            &prepared.screen,
+            &options,
+            None,
+        )
+        .map_err(|e| e.to_string())?;
         let mut bytes = Vec::new();
         picture.write(&mut bytes).map_err(|e| e.to_string())?;
         Ok(bytes)
