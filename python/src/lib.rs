@@ -812,22 +812,33 @@ fn rendered(
     }
     let scene = scene.inner.clone();
     let camera = camera.clone();
-    py.detach(move || -> Result<Vec<u8>, String> {
-        let placed = camera.place(&scene)?;
-        let prepared = pipeline::prepare(&placed.scene, &placed.camera, CullMode::Auto);
-        let picture = render::render(
-            &placed.scene,
-            &placed.camera,
-            &prepared.screen,
-            &options,
-            None,
-        )
-        .map_err(|e| e.to_string())?;
-        let mut bytes = Vec::new();
-        picture.write(&mut bytes).map_err(|e| e.to_string())?;
-        Ok(bytes)
-    })
-    .map_err(err)
+    let (bytes, warnings) = py
+        .detach(move || -> Result<(Vec<u8>, Vec<String>), String> {
+            let placed = camera.place(&scene)?;
+            let prepared = pipeline::prepare(&placed.scene, &placed.camera, CullMode::Auto);
+            let picture = render::render(
+                &placed.scene,
+                &placed.camera,
+                &prepared.screen,
+                &options,
+                None,
+            )
+            .map_err(|e| e.to_string())?;
+            let mut bytes = Vec::new();
+            picture.write(&mut bytes).map_err(|e| e.to_string())?;
+            Ok((bytes, picture.warnings))
+        })
+        .map_err(err)?;
+    // What the command prints as warnings (an empty view, translucent faces drawn opaque).
+    for w in warnings {
+        PyErr::warn(
+            py,
+            &py.get_type::<pyo3::exceptions::PyUserWarning>(),
+            &std::ffi::CString::new(w).unwrap_or_default(),
+            1,
+        )?;
+    }
+    Ok(bytes)
 }
 
 /// The SVG picture (exact visible regions, seamless), as a string. `lines`: the visible lines

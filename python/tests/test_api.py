@@ -118,6 +118,8 @@ def test_arrays_of_other_dtypes_and_padded_rows_are_accepted():
     assert all(r.color[1] == 0.0 and r.color[2] == 0.0 and r.color[0] > 0 for r in regions)
 
 
+# The z-buffer's PNG draws the cube's and the glass's translucent faces opaque, and says so.
+@pytest.mark.filterwarnings("ignore:.*translucent faces as opaque")
 @pytest.mark.parametrize("name", ["cube.obj", "interpenetrating.obj", "tinted_glass.obj"])
 def test_svg_and_png_are_the_commands_bytes(cli, name):
     scene = sightline.Scene.from_file(FIXTURES / name)
@@ -185,3 +187,13 @@ def test_bad_options_raise():
         sightline.Camera(eye=(0, 0, 5), target=(0, 0, 0), fov=30, ortho=2)
     with pytest.raises(sightline.SightlineError):
         sightline.Scene.from_file(FIXTURES / "no_such_file.obj")
+
+
+def test_the_commands_warnings_are_python_warnings():
+    glass = sightline.Scene.from_file(FIXTURES / "tinted_glass.obj")
+    with pytest.warns(UserWarning, match="translucent faces as opaque"):
+        sightline.to_png(glass, sightline.Camera(view="iso", size=SIZE), method="zbuffer")
+    cube = sightline.Scene.from_file(FIXTURES / "cube.obj")
+    away = sightline.Camera(eye=(0.5, 0.5, 5), target=(0.5, 0.5, 10), up=(0, 1, 0), fov=30, size=SIZE)
+    with pytest.warns(UserWarning, match="sees none of the 6 faces"):
+        sightline.to_svg(cube, away)
