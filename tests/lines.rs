@@ -8,7 +8,7 @@ mod support;
 use glam::{DMat4, DVec3};
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::Signed;
+use num_traits::{Signed, ToPrimitive};
 use proptest::prelude::*;
 use sightline::camera::{Camera, NamedView};
 use sightline::exact::Samples;
@@ -235,11 +235,22 @@ fn depth(plane: &sightline::exact::Plane, p: &[BigRational; 2]) -> BigRational {
 fn faces_in_front(screen: &ScreenScene, own: &[u32], p: &[BigRational; 2], z: &BigRational) -> u32 {
     use sightline::project::Side;
     let mut depth_of_face: HashMap<u32, Option<BigRational>> = HashMap::new();
+    // A filter only: polygons whose grid box is clearly away from p cannot hold it (p in f64
+    // is within a few units of the exact point, grid coordinates being below 2^53).
+    let near = [&p[0], &p[1]].map(|v| v.to_f64().expect("finite"));
     for poly in &screen.polys {
         if own.contains(&poly.face) {
             continue;
         }
         let c = screen.corners(poly);
+        let away = |k: usize, get: fn(&sightline::exact::GridPoint) -> i64| {
+            let lo = c.iter().map(get).min().unwrap() as f64 - 16.0;
+            let hi = c.iter().map(get).max().unwrap() as f64 + 16.0;
+            near[k] < lo || near[k] > hi
+        };
+        if away(0, |g| g.x) || away(1, |g| g.y) {
+            continue;
+        }
         let k = c.len();
         let side = |i: usize| {
             let (a, b) = (&c[i], &c[(i + 1) % k]);
