@@ -216,16 +216,8 @@ fn push_num(d: &mut String, x: f64) {
 /// so no trailing zeros), which must then be below 10^18. Integers, zero and non-finite values
 /// count as possible ties (they take the slow path).
 fn may_tie(x: f64) -> bool {
-    let bits = x.to_bits();
-    let exponent = ((bits >> 52) & 0x7ff) as i64;
-    let fraction = bits & ((1 << 52) - 1);
-    if exponent == 0x7ff || (exponent == 0 && fraction == 0) {
+    let Some((mut m, mut e)) = integer_and_exponent(x).filter(|&(m, _)| m != 0) else {
         return true;
-    }
-    let (mut m, mut e) = if exponent == 0 {
-        (fraction, -1074)
-    } else {
-        (fraction | (1 << 52), exponent - 1075)
     };
     let zeros = m.trailing_zeros();
     m >>= zeros;
@@ -244,18 +236,10 @@ fn may_tie(x: f64) -> bool {
 /// what it holds: the characters of `{:.3}` (which rounds the exact binary value half to even)
 /// so trimmed, made in integers: `x·1000 = m·1000·2^e` rounded half to even exactly.
 fn push_milli(d: &mut String, x: f64) {
-    let bits = x.to_bits();
-    let exponent = ((bits >> 52) & 0x7ff) as i64;
-    let fraction = bits & ((1 << 52) - 1);
-    let (m, e) = if exponent == 0 {
-        (fraction, -1074)
-    } else {
-        (fraction | (1 << 52), exponent - 1075)
-    };
     // Integers beyond 2^53 (and non-finite values) the formatter's own way.
-    if exponent == 0x7ff || e > 0 {
+    let Some((m, e)) = integer_and_exponent(x).filter(|&(_, e)| e <= 0) else {
         return push_milli_slow(d, x);
-    }
+    };
     let product = m as u128 * 1000;
     let shift = (-e) as u32;
     let n: u128 = if shift >= 128 {
@@ -271,7 +255,7 @@ fn push_milli(d: &mut String, x: f64) {
         d.push('0');
         return;
     }
-    if bits >> 63 == 1 {
+    if x.is_sign_negative() {
         d.push('-');
     }
     let (whole, thousandths) = (n / 1000, (n % 1000) as u16);
@@ -287,6 +271,18 @@ fn push_milli(d: &mut String, x: f64) {
             1
         };
         d.extend(digits[..kept].iter().map(|&k| char::from(b'0' + k as u8)));
+    }
+}
+
+/// `|x| = m·2^e` exactly (`m` below 2^53), or `None` for infinities and NaN.
+fn integer_and_exponent(x: f64) -> Option<(u64, i64)> {
+    let bits = x.to_bits();
+    let exponent = ((bits >> 52) & 0x7ff) as i64;
+    let fraction = bits & ((1 << 52) - 1);
+    match exponent {
+        0x7ff => None,
+        0 => Some((fraction, -1074)),
+        _ => Some((fraction | (1 << 52), exponent - 1075)),
     }
 }
 
