@@ -34,7 +34,18 @@ create_exception!(
 );
 
 fn err(e: impl std::fmt::Display) -> PyErr {
-    SightlineError::new_err(e.to_string())
+    SightlineError::new_err(keywords(&e.to_string()))
+}
+
+/// The engine's messages name the command's flags; Python users pass keywords.
+fn keywords(message: &str) -> String {
+    let mut m = message.to_string();
+    for flag in [
+        "method", "fov", "ortho", "near", "far", "size", "eye", "target", "up",
+    ] {
+        m = m.replace(&format!("--{flag} "), &format!("{flag}="));
+    }
+    m
 }
 
 /// A scene: faces with provenance (face ids are the input order: file order, or rows of the
@@ -56,9 +67,9 @@ impl Scene {
     }
 
     /// A scene from `vertices` (n, 3) and `faces` (m, k) vertex indices (a row may end early
-    /// with -1 padding, for polygons of mixed sizes); `colors`: one RGB in [0, 1] for every
-    /// face (3,) or per face (m, 3); `transparency`: 0 (opaque) to 1, one value or per face
-    /// (m,). Face ids are row numbers; a degenerate face is dropped and its id left unused.
+    /// with -1 padding, for polygons of mixed sizes); `colors`: one RGB or RGBA in [0, 1] for
+    /// every face, (3,) or (4,), or per face, (m, 3) or (m, 4), alpha being the opacity;
+    /// `transparency`: 0 (opaque) to 1, one value or per face (m,). Face ids are row numbers; a degenerate face is dropped and its id left unused.
     #[staticmethod]
     #[pyo3(signature = (vertices, faces, colors = None, transparency = None))]
     fn from_arrays<'py>(
@@ -86,36 +97,58 @@ impl Scene {
             )));
         }
         let m = faces.shape()[0];
-        let colors: Option<Vec<[f64; 3]>> = match colors {
+        // RGB or RGBA rows; an alpha column is an opacity (transparency = 1 - alpha).
+        let rgba: Option<Vec<[f64; 4]>> = match colors {
             None => None,
             Some(c) => {
                 let c = as_array(c, "float64")?;
-                let rows: Vec<[f64; 3]> = match c.extract::<PyReadonlyArray1<f64>>() {
-                    Ok(one) if one.len() == 3 => {
-                        let v = one.as_slice()?;
-                        vec![[v[0], v[1], v[2]]; m]
-                    }
+                let row = |r: &[f64]| [r[0], r[1], r[2], r.get(3).copied().unwrap_or(1.0)];
+                let rows: Vec<[f64; 4]> = match c.extract::<PyReadonlyArray1<f64>>() {
+                    Ok(one) if one.len() == 3 || one.len() == 4 => vec![row(one.as_slice()?); m],
                     _ => {
                         let per: PyReadonlyArray2<f64> = c
                             .extract()
-                            .map_err(|_| err("colors must be (3,) or (m, 3)"))?;
-                        if per.shape() != [m, 3] {
+                            .map_err(|_| err("colors must be (3,), (4,), (m, 3) or (m, 4)"))?;
+                        let shape = per.shape();
+                        if shape[0] != m || !(shape[1] == 3 || shape[1] == 4) {
                             return Err(err(format!(
-                                "colors must be (3,) or ({m}, 3), got {:?}",
-                                per.shape()
+                                "colors must be (3,), (4,), ({m}, 3) or ({m}, 4), got {shape:?}"
                             )));
                         }
                         per.as_array()
                             .rows()
                             .into_iter()
-                            .map(|r| [r[0], r[1], r[2]])
+                            .map(|r| row(&r.to_vec()))
                             .collect()
                     }
                 };
                 Some(rows)
             }
         };
+        if let Some((k, c)) = rgba
+            .iter()
+            .flatten()
+            .enumerate()
+            .find(|(_, c)| !(0.0..=1.0).contains(&c[3]))
+        {
+            return Err(err(format!(
+                "colors[{k}]: alpha {} is not within [0, 1]",
+                c[3]
+            )));
+        }
+        let has_alpha = rgba.as_ref().is_some_and(|c| c.iter().any(|c| c[3] != 1.0));
+        let colors: Option<Vec<[f64; 3]>> = rgba
+            .as_ref()
+            .map(|c| c.iter().map(|c| [c[0], c[1], c[2]]).collect());
+        if has_alpha && transparency.is_some() {
+            return Err(err(
+                "give opacity as the colours' alpha or as transparency, not both",
+            ));
+        }
         let transparency: Option<Vec<f64>> = match transparency {
+            None if has_alpha => rgba
+                .as_ref()
+                .map(|c| c.iter().map(|c| 1.0 - c[3]).collect()),
             None => None,
             Some(t) => {
                 if let Ok(one) = t.extract::<f64>() {
@@ -831,6 +864,7 @@ fn rendered(
         .map_err(err)?;
     // What the command prints as warnings (an empty view, translucent faces drawn opaque).
     for w in warnings {
+        let w = keywords(&w);
         PyErr::warn(
             py,
             &py.get_type::<pyo3::exceptions::PyUserWarning>(),

@@ -197,3 +197,30 @@ def test_the_commands_warnings_are_python_warnings():
     away = sightline.Camera(eye=(0.5, 0.5, 5), target=(0.5, 0.5, 10), up=(0, 1, 0), fov=30, size=SIZE)
     with pytest.warns(UserWarning, match="sees none of the 6 faces"):
         sightline.to_svg(cube, away)
+
+
+def test_an_alpha_column_is_the_faces_opacity():
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [0, 1, 1]], float)
+    faces = [[0, 1, 2], [3, 4, 5]]
+    camera = sightline.Camera(eye=(0.3, 0.3, 5), target=(0.3, 0.3, 0), up=(0, 1, 0), fov=30, size=(64, 64))
+    # The nearer face (z = 1) is the translucent one.
+    rgba = sightline.Scene.from_arrays(v, faces, colors=[[1, 0, 0, 1], [0, 0, 1, 0.25]])
+    split = sightline.Scene.from_arrays(v, faces, colors=[[1, 0, 0], [0, 0, 1]], transparency=[0, 0.75])
+    assert sightline.to_svg(rgba, camera) == sightline.to_svg(split, camera)
+    opacity = {r.face: r.opacity for r in sightline.visible_set(rgba, camera)}
+    assert opacity == {0: 1.0, 1: 0.25}
+    with pytest.raises(sightline.SightlineError, match="not both"):
+        sightline.Scene.from_arrays(v, faces, colors=[1, 0, 0, 0.5], transparency=0.5)
+    with pytest.raises(sightline.SightlineError, match=r"colors\[0\]: alpha 2"):
+        sightline.Scene.from_arrays(v, faces, colors=[1, 0, 0, 2])
+
+
+def test_messages_name_keywords_not_the_commands_flags():
+    with pytest.raises(sightline.SightlineError) as e:
+        sightline.Camera(eye=(0, 0, 5), target=(0, 0, 0), fov=-40)
+    assert str(e.value).startswith("fov=") and "--" not in str(e.value)
+    glass = sightline.Scene.from_file(FIXTURES / "tinted_glass.obj")
+    with pytest.warns(UserWarning) as caught:
+        sightline.to_png(glass, sightline.Camera(view="iso", size=SIZE), method="zbuffer")
+    assert all("--" not in str(w.message) for w in caught)
+    assert any("method=zbuffer draws translucent faces" in str(w.message) for w in caught)
