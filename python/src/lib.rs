@@ -16,6 +16,7 @@ use sightline::camera::{CameraSpec, NamedView};
 use sightline::draw::{self, DrawOptions};
 use sightline::lines::{LineOptions, line_drawing};
 use sightline::methods::{self, Engine, Output};
+use sightline::output::canonical::regions_of_rings;
 use sightline::output::drawing::DrawItem;
 use sightline::paint::Fill;
 use sightline::pipeline;
@@ -46,6 +47,21 @@ fn keywords(message: &str) -> String {
         m = m.replace(&format!("--{flag} "), &format!("{flag}="));
     }
     m
+}
+
+/// `x` as a C-contiguous numpy array of `dtype`: the same array when it already is one.
+fn contiguous<'py>(x: &Bound<'py, PyAny>, dtype: &str) -> PyResult<Bound<'py, PyAny>> {
+    x.py()
+        .import("numpy")?
+        .call_method1("ascontiguousarray", (x, dtype))
+}
+
+/// An image size of at least one pixel each way.
+fn check_size(size: (u32, u32)) -> PyResult<()> {
+    if size.0 == 0 || size.1 == 0 {
+        return Err(err(format!("size must be positive, got {size:?}")));
+    }
+    Ok(())
 }
 
 /// A scene: faces with provenance (face ids are the input order: file order, or rows of the
@@ -79,14 +95,11 @@ impl Scene {
         colors: Option<&Bound<'py, PyAny>>,
         transparency: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Scene> {
-        let np = py.import("numpy")?;
-        let as_array =
-            |x: &Bound<'py, PyAny>, dtype: &str| np.call_method1("ascontiguousarray", (x, dtype));
-        let vertices = as_array(vertices, "float64")?;
+        let vertices = contiguous(vertices, "float64")?;
         let vertices: PyReadonlyArray2<f64> = vertices
             .extract()
             .map_err(|_| err("vertices must be an (n, 3) array of numbers"))?;
-        let faces = as_array(faces, "int64")?;
+        let faces = contiguous(faces, "int64")?;
         let faces: PyReadonlyArray2<i64> = faces
             .extract()
             .map_err(|_| err("faces must be an (m, k) array of vertex indices"))?;
@@ -101,7 +114,7 @@ impl Scene {
         let rgba: Option<Vec<[f64; 4]>> = match colors {
             None => None,
             Some(c) => {
-                let c = as_array(c, "float64")?;
+                let c = contiguous(c, "float64")?;
                 let row = |r: &[f64]| [r[0], r[1], r[2], r.get(3).copied().unwrap_or(1.0)];
                 let rows: Vec<[f64; 4]> = match c.extract::<PyReadonlyArray1<f64>>() {
                     Ok(one) if one.len() == 3 || one.len() == 4 => vec![row(one.as_slice()?); m],
@@ -154,7 +167,7 @@ impl Scene {
                 if let Ok(one) = t.extract::<f64>() {
                     Some(vec![one; m])
                 } else {
-                    let t = as_array(t, "float64")?;
+                    let t = contiguous(t, "float64")?;
                     let per: PyReadonlyArray1<f64> = t
                         .extract()
                         .map_err(|_| err("transparency must be a number or (m,)"))?;
@@ -412,9 +425,7 @@ impl Camera {
                 "give fov (perspective) or ortho (orthographic), not both",
             ));
         }
-        if size.0 == 0 || size.1 == 0 {
-            return Err(err(format!("size must be positive, got {size:?}")));
-        }
+        check_size(size)?;
         let spec = CameraSpec {
             view: view.or((eye.is_none()).then_some(NamedView::Iso)),
             eye: vec3(eye),
@@ -442,8 +453,7 @@ impl Camera {
     #[staticmethod]
     #[pyo3(signature = (matrix, size = (1024, 1024)))]
     fn from_matrix(matrix: &Bound<'_, PyAny>, size: (u32, u32)) -> PyResult<Camera> {
-        let np = matrix.py().import("numpy")?;
-        let m = np.call_method1("ascontiguousarray", (matrix, "float64"))?;
+        let m = contiguous(matrix, "float64")?;
         let m: PyReadonlyArray2<f64> = m
             .extract()
             .map_err(|_| err("matrix must be a 4x4 array of numbers"))?;
@@ -455,9 +465,7 @@ impl Camera {
         if rows.iter().flatten().any(|v| !v.is_finite()) {
             return Err(err("matrix has a value that is not finite"));
         }
-        if size.0 == 0 || size.1 == 0 {
-            return Err(err(format!("size must be positive, got {size:?}")));
-        }
+        check_size(size)?;
         Ok(Camera {
             spec: CameraSpec {
                 size: Some(size),
@@ -588,7 +596,7 @@ fn ring_array<'py>(py: Python<'py>, ring: &[[f64; 2]]) -> PyResult<Bound<'py, Py
     numpy::PyArray1::from_vec(py, flat).reshape([ring.len(), 2])
 }
 
-/// The signed area, positive for the canonical outer rings (as written, y down).
+/// The signed area on the numbers as written (positive for outer rings in pixels).
 fn signed_area(ring: &[[f64; 2]]) -> f64 {
     let n = ring.len();
     0.5 * (0..n)
@@ -599,51 +607,13 @@ fn signed_area(ring: &[[f64; 2]]) -> f64 {
         .sum::<f64>()
 }
 
-/// Is `p` inside `ring` (crossing number)? For vertices of one canonical drawing, which never
-/// cross each other's rings.
-fn inside(p: [f64; 2], ring: &[[f64; 2]]) -> bool {
-    let mut odd = false;
-    let n = ring.len();
-    for i in 0..n {
-        let (a, b) = (ring[i], ring[(i + 1) % n]);
-        if (a[1] > p[1]) != (b[1] > p[1]) {
-            let x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
-            if p[0] < x {
-                odd = !odd;
-            }
-        }
-    }
-    odd
-}
-
-/// A drawing item's rings as regions of one outer ring each: canonical items orient outer
-/// rings with positive area and holes negative; a hole goes to the smallest outer ring that
-/// holds it (an item may hold an island inside a hole).
+/// A drawing item's rings as regions of one outer ring each, its holes after it (an item may
+/// hold an island inside a hole): as the canonical form decides holes.
 fn regions_of_item(item: &DrawItem) -> Vec<Vec<Ring>> {
-    let (outers, holes): (Vec<&Ring>, Vec<&Ring>) =
-        item.rings.iter().partition(|r| signed_area(r) >= 0.0);
-    let mut regions: Vec<Vec<Ring>> = outers.iter().map(|r| vec![r.to_vec()]).collect();
-    if regions.len() == 1 {
-        regions[0].extend(holes.into_iter().cloned());
-        return regions;
-    }
-    for hole in holes {
-        let holder = outers
-            .iter()
-            .enumerate()
-            .filter(|(_, outer)| {
-                // A vertex of the hole that is not a vertex of the outer ring decides.
-                hole.iter()
-                    .find(|p| !outer.contains(p))
-                    .is_some_and(|&p| inside(p, outer))
-            })
-            .min_by(|a, b| signed_area(a.1).total_cmp(&signed_area(b.1)))
-            .map(|(k, _)| k);
-        if let Some(k) = holder {
-            regions[k].push(hole.clone());
-        }
-    }
-    regions
+    regions_of_rings(&item.rings)
+        .into_iter()
+        .map(|region| region.into_iter().map(|k| item.rings[k].clone()).collect())
+        .collect()
 }
 
 /// A closed ring of pixel points (the last not repeated).

@@ -182,24 +182,57 @@ fn signed_area_sign(ring: &[[f64; 2]]) -> Ordering {
 
 /// Per ring, whether it is a hole: whether it lies inside an odd number of the other rings.
 fn holes(rings: &[Vec<[f64; 2]>]) -> Vec<bool> {
+    holders(rings).iter().map(|h| h.len() % 2 == 1).collect()
+}
+
+/// An item's rings (of a canonical, or any non-crossing, ring set) as regions: per outer
+/// boundary, its index then those of the holes directly inside it. A hole belongs to the
+/// innermost ring holding it; an outer ring inside a hole (an island) is a region of its own.
+pub fn regions_of_rings(rings: &[Vec<[f64; 2]>]) -> Vec<Vec<usize>> {
+    let holders = holders(rings);
+    let mut regions: Vec<Vec<usize>> = Vec::new();
+    let mut region_of = vec![usize::MAX; rings.len()];
+    for (i, h) in holders.iter().enumerate() {
+        if h.len() % 2 == 0 {
+            region_of[i] = regions.len();
+            regions.push(vec![i]);
+        }
+    }
+    for (i, h) in holders.iter().enumerate() {
+        if h.len() % 2 == 1 {
+            // The innermost holder is the one that is itself held by all the others.
+            let parent = *h
+                .iter()
+                .find(|&&j| holders[j].len() == h.len() - 1)
+                .expect("a hole lies inside its outer ring");
+            regions[region_of[parent]].push(i);
+        }
+    }
+    regions
+}
+
+/// Per ring, the other rings it lies inside.
+fn holders(rings: &[Vec<[f64; 2]>]) -> Vec<Vec<usize>> {
     if rings.len() < 2 {
-        return vec![false; rings.len()];
+        return vec![Vec::new(); rings.len()];
     }
     let boxes: Vec<[f64; 4]> = rings.iter().map(|r| bbox(r)).collect();
     let mut closed: Vec<Option<LineString<f64>>> = vec![None; rings.len()];
     (0..rings.len())
         .map(|i| {
-            let mut depth = 0usize;
+            let mut inside_of = Vec::new();
             for j in 0..rings.len() {
                 let (a, b) = (boxes[i], boxes[j]);
                 // Only a ring whose box holds this one's box can hold the ring.
                 let boxed = b[0] <= a[0] && b[1] <= a[1] && a[2] <= b[2] && a[3] <= b[3];
                 if i != j && boxed {
                     let outer = closed[j].get_or_insert_with(|| closed_ring(&rings[j]));
-                    depth += inside(&rings[i], outer) as usize;
+                    if inside(&rings[i], outer) {
+                        inside_of.push(j);
+                    }
                 }
             }
-            depth % 2 == 1
+            inside_of
         })
         .collect()
 }
@@ -305,6 +338,25 @@ fn cmp_strokes(a: &SeamStroke, b: &SeamStroke) -> Ordering {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A hole goes with the ring directly around it; an island in a hole is a region of its
+    /// own, and so is a second outer ring with its own hole.
+    #[test]
+    fn regions_of_rings_give_each_outer_ring_its_own_holes() {
+        let rings = vec![
+            rect(0.0, 0.0, 10.0, 10.0),
+            rect(20.0, 0.0, 30.0, 10.0),
+            rect(2.0, 2.0, 8.0, 8.0),
+            rect(22.0, 2.0, 24.0, 4.0),
+            rect(4.0, 4.0, 6.0, 6.0),
+        ];
+        assert_eq!(
+            regions_of_rings(&rings),
+            vec![vec![0, 2], vec![1, 3], vec![4]]
+        );
+        assert_eq!(holes(&rings), vec![false, false, true, true, false]);
+        assert_eq!(regions_of_rings(&rings[..1]), vec![vec![0]]);
+    }
     use crate::output::drawing::Seams;
 
     fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<[f64; 2]> {
