@@ -78,6 +78,11 @@ pub struct GridPoint {
 }
 
 impl GridPoint {
+    /// The grid point with these coordinates.
+    pub const fn new(x: i64, y: i64, z: i64) -> GridPoint {
+        GridPoint { x, y, z }
+    }
+
     /// Snaps an NDC point (already inside the guard band and depth range).
     #[inline]
     pub fn snap(ndc_x: f64, ndc_y: f64, ndc_z: f64) -> GridPoint {
@@ -585,10 +590,6 @@ pub struct Fallbacks {
 mod tests {
     use super::*;
 
-    fn gp(x: i64, y: i64, z: i64) -> GridPoint {
-        GridPoint { x, y, z }
-    }
-
     /// The fast conversion rounds exactly as bnum does (correctly, ties to even), on values
     /// built to hit every case: ties with and without a sticky bit far below, carries into the
     /// next power of two, each limb count, both signs, the extremes.
@@ -670,11 +671,14 @@ mod tests {
             let (p, q) = if k % 2 == 0 {
                 let pick = |r: i64| ((((2 * r + 1 - 16) as i128) << XY_BITS) / 16) as i64;
                 (
-                    gp(pick(rnd(8) + 8), rnd(m / 2), 0),
-                    gp(pick(rnd(8) + 8), rnd(m / 2), 0),
+                    GridPoint::new(pick(rnd(8) + 8), rnd(m / 2), 0),
+                    GridPoint::new(pick(rnd(8) + 8), rnd(m / 2), 0),
                 )
             } else {
-                (gp(rnd(m), rnd(m), 0), gp(rnd(m), rnd(m), 0))
+                (
+                    GridPoint::new(rnd(m), rnd(m), 0),
+                    GridPoint::new(rnd(m), rnd(m), 0),
+                )
             };
             if p.y == q.y {
                 continue;
@@ -710,7 +714,9 @@ mod tests {
         };
         let m = GRID_MAX;
         for _ in 0..2000 {
-            let pts: Vec<GridPoint> = (0..6).map(|_| gp(rnd(m), rnd(m), rnd(m))).collect();
+            let pts: Vec<GridPoint> = (0..6)
+                .map(|_| GridPoint::new(rnd(m), rnd(m), rnd(m)))
+                .collect();
             let (Some(p), Some(q)) = (
                 Plane::through(pts[0], pts[1], pts[2]),
                 Plane::through(pts[3], pts[4], pts[5]),
@@ -736,7 +742,9 @@ mod tests {
     fn plane_depth_at_corners_is_the_corner_depth() {
         let s = Samples::new(4, 4);
         // A triangle whose corners are sample points of pixels (0,0), (3,0), (0,3).
-        let c = |i: i64, j: i64, z: i64| gp((s.x_num(i) / 4) as i64, (s.y_num(j) / 4) as i64, z);
+        let c = |i: i64, j: i64, z: i64| {
+            GridPoint::new((s.x_num(i) / 4) as i64, (s.y_num(j) / 4) as i64, z)
+        };
         let p = Plane::through(c(0, 0, 100), c(3, 0, -5000), c(0, 3, 777)).unwrap();
         assert!((depth_ndc(&p, &s, 0, 0) * Z_SCALE - 100.0).abs() < 1e-6);
         assert!((depth_ndc(&p, &s, 3, 0) * Z_SCALE + 5000.0).abs() < 1e-6);

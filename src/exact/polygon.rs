@@ -943,10 +943,6 @@ fn merge_along_shared_edge(p: &[usize], q: &[usize]) -> Option<Vec<usize>> {
 mod tests {
     use super::*;
 
-    fn gp(x: i64, y: i64, z: i64) -> GridPoint {
-        GridPoint { x, y, z }
-    }
-
     /// The division-free quotient agrees with 256-bit division: integers anywhere in the grid
     /// (its ends included) are found, non-integers and quotients off the grid are refused.
     #[test]
@@ -998,7 +994,12 @@ mod tests {
     }
 
     fn square() -> Piece {
-        let c = [gp(0, 0, 0), gp(100, 0, 0), gp(100, 100, 0), gp(0, 100, 0)];
+        let c = [
+            GridPoint::new(0, 0, 0),
+            GridPoint::new(100, 0, 0),
+            GridPoint::new(100, 100, 0),
+            GridPoint::new(0, 100, 0),
+        ];
         let support = Plane::through(c[0], c[1], c[2]).unwrap();
         Piece::from_convex(0, support, &c, |side| Boundary::Outline {
             poly: 0,
@@ -1009,7 +1010,7 @@ mod tests {
     #[test]
     fn split_square_by_line_through_the_middle() {
         let sq = square();
-        let l = Line::edge(gp(50, -10, 0), gp(50, 200, 0)).unwrap();
+        let l = Line::edge(GridPoint::new(50, -10, 0), GridPoint::new(50, 200, 0)).unwrap();
         let Split::Both(neg, pos) = sq.split_by_line(&l, Boundary::ScreenSplit) else {
             panic!()
         };
@@ -1024,7 +1025,7 @@ mod tests {
     #[test]
     fn split_through_vertices_keeps_them_exact() {
         let sq = square();
-        let l = Line::edge(gp(0, 0, 0), gp(100, 100, 0)).unwrap();
+        let l = Line::edge(GridPoint::new(0, 0, 0), GridPoint::new(100, 100, 0)).unwrap();
         let Split::Both(neg, pos) = sq.split_by_line(&l, Boundary::ScreenSplit) else {
             panic!()
         };
@@ -1034,7 +1035,7 @@ mod tests {
         assert!((0..pos.len()).all(|k| pos.corner(k).is_some()));
         // A line touching at a corner only does not split.
         // Its left (positive) side is x + y > 200: the square is on the negative side.
-        let t = Line::edge(gp(100, 100, 0), gp(200, 0, 0)).unwrap();
+        let t = Line::edge(GridPoint::new(100, 100, 0), GridPoint::new(200, 0, 0)).unwrap();
         assert_eq!(sq.split_by_line(&t, Boundary::ScreenSplit), Split::Negative);
     }
 
@@ -1043,7 +1044,14 @@ mod tests {
         // The square at z = 0 (tilted support through the corners), cut by the plane z = x - 50:
         // for x < 50 the square is above that plane (farther), for x > 50 below it (nearer).
         let sq = square();
-        let q = Arc::new(Plane::through(gp(50, 0, 0), gp(50, 100, 0), gp(0, 0, -50)).unwrap());
+        let q = Arc::new(
+            Plane::through(
+                GridPoint::new(50, 0, 0),
+                GridPoint::new(50, 100, 0),
+                GridPoint::new(0, 0, -50),
+            )
+            .unwrap(),
+        );
         assert!(q.c > 0);
         let Split::Both(near, far) = sq.split_by_plane(&q, 7) else {
             panic!()
@@ -1064,7 +1072,14 @@ mod tests {
     #[test]
     fn splits_keep_each_line_with_its_boundary() {
         let sq = square();
-        let q = Arc::new(Plane::through(gp(50, 0, 0), gp(50, 100, 0), gp(0, 0, -50)).unwrap());
+        let q = Arc::new(
+            Plane::through(
+                GridPoint::new(50, 0, 0),
+                GridPoint::new(50, 100, 0),
+                GridPoint::new(0, 0, -50),
+            )
+            .unwrap(),
+        );
         let Split::Both(near, far) = sq.split_by_plane(&q, 7) else {
             panic!()
         };
@@ -1074,7 +1089,7 @@ mod tests {
         let boundaries = |p: &Piece| p.boundaries().collect::<Vec<_>>();
         assert_eq!(boundaries(&near), vec![side(0), side(1), side(2), cut]);
         assert_eq!(boundaries(&far), vec![side(2), side(3), side(0), cut]);
-        let l = Line::edge(gp(0, 50, 0), gp(200, 50, 0)).unwrap();
+        let l = Line::edge(GridPoint::new(0, 50, 0), GridPoint::new(200, 50, 0)).unwrap();
         let Split::Both(below, above) = far.split_by_line(&l, Boundary::ScreenSplit) else {
             panic!()
         };
@@ -1095,7 +1110,10 @@ mod tests {
         for _ in 0..200 {
             let mut pieces = vec![square()];
             for _ in 0..6 {
-                let (a, b) = (gp(rnd(150), rnd(150), 0), gp(rnd(150), rnd(150), 0));
+                let (a, b) = (
+                    GridPoint::new(rnd(150), rnd(150), 0),
+                    GridPoint::new(rnd(150), rnd(150), 0),
+                );
                 let Some(l) = Line::edge(a, b) else { continue };
                 let mut next = Vec::new();
                 for p in &pieces {
@@ -1127,14 +1145,18 @@ mod tests {
         assert_eq!(size_of::<Piece>(), 568);
         // Splitting a triangle by a line through none of its corners: a triangle and a quad,
         // both inline.
-        let c = [gp(0, 0, 0), gp(100, 0, 0), gp(0, 100, 0)];
+        let c = [
+            GridPoint::new(0, 0, 0),
+            GridPoint::new(100, 0, 0),
+            GridPoint::new(0, 100, 0),
+        ];
         let tri = Piece::from_convex(0, Plane::through(c[0], c[1], c[2]).unwrap(), &c, |side| {
             Boundary::Outline {
                 poly: 0,
                 side: side as u32,
             }
         });
-        let l = Line::edge(gp(50, -10, 0), gp(50, 200, 0)).unwrap();
+        let l = Line::edge(GridPoint::new(50, -10, 0), GridPoint::new(50, 200, 0)).unwrap();
         let Split::Both(neg, pos) = tri.split_by_line(&l, Boundary::ScreenSplit) else {
             panic!()
         };
@@ -1152,12 +1174,12 @@ mod tests {
     #[test]
     fn convex_pieces_of_an_l_shape() {
         let l = [
-            gp(0, 0, 0),
-            gp(20, 0, 0),
-            gp(20, 10, 0),
-            gp(10, 10, 0),
-            gp(10, 20, 0),
-            gp(0, 20, 0),
+            GridPoint::new(0, 0, 0),
+            GridPoint::new(20, 0, 0),
+            GridPoint::new(20, 10, 0),
+            GridPoint::new(10, 10, 0),
+            GridPoint::new(10, 20, 0),
+            GridPoint::new(0, 20, 0),
         ];
         let pieces = convex_pieces(&l);
         assert_eq!(pieces.len(), 2);
@@ -1172,7 +1194,12 @@ mod tests {
             })
             .sum();
         assert_eq!(total, 300.0);
-        let square = [gp(0, 0, 0), gp(1, 0, 0), gp(1, 1, 0), gp(0, 1, 0)];
+        let square = [
+            GridPoint::new(0, 0, 0),
+            GridPoint::new(1, 0, 0),
+            GridPoint::new(1, 1, 0),
+            GridPoint::new(0, 1, 0),
+        ];
         assert_eq!(convex_pieces(&square), vec![square.to_vec()]);
     }
 }

@@ -335,18 +335,22 @@ mod tests {
     use crate::exact::GridPoint;
     use crate::visibility::{initial_pieces, screen_of_polygons};
 
-    fn grid(x: i64, y: i64, z: i64) -> GridPoint {
-        GridPoint { x, y, z }
-    }
-
     /// A strip of a scene stops as soon as another strip gave up (its work would be thrown
     /// away), and one that gives up tells the others.
     #[test]
     fn a_strip_stops_once_another_gave_up_and_tells_the_others_when_it_gives_up() {
         // Two triangles passing through each other: one level of recursion.
         let crossing = screen_of_polygons([
-            vec![grid(0, 0, 10), grid(100, 0, 10), grid(0, 100, 10)],
-            vec![grid(0, 0, 0), grid(100, 0, 20), grid(0, 100, 0)],
+            vec![
+                GridPoint::new(0, 0, 10),
+                GridPoint::new(100, 0, 10),
+                GridPoint::new(0, 100, 10),
+            ],
+            vec![
+                GridPoint::new(0, 0, 0),
+                GridPoint::new(100, 0, 20),
+                GridPoint::new(0, 100, 0),
+            ],
         ]);
         let pieces = initial_pieces(&crossing);
         let stop = AtomicBool::new(false);
