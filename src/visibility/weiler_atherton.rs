@@ -160,15 +160,9 @@ fn within_limit(
     let mut st = WeilerAthertonStats::default();
     let mut out = Vec::new();
     let mut ticker = Ticker::new(report, "visible set", screen.polys.len() as u64);
-    let finished = resolve(
-        screen,
-        pieces,
-        None,
-        &mut out,
-        &mut st,
-        (0, limit),
-        &mut |done| ticker.tick(done),
-    );
+    let finished = resolve(screen, pieces, &mut out, &mut st, limit, &mut |done| {
+        ticker.tick(done)
+    });
     ticker.finish();
     finished.then_some((out, st))
 }
@@ -231,49 +225,84 @@ impl Chains {
     }
 }
 
-/// Writes the visible parts of `pieces` to `out`, taking `first`'s polygon as the first clip
-/// polygon when given. `done(k)`: k clip polygons of this level are done. `(level, limit)`:
-/// false, with `out` incomplete, when the limit is reached (checked at every clip polygon).
+/// One level of the subdivision: its pieces in a [`Live`] list, chained by clip polygon rank,
+/// and the next rank to take.
+struct Level {
+    list: Live,
+    chains: Chains,
+    ranks: u32,
+    next: u32,
+}
+
+impl Level {
+    /// The level resolving `pieces`, taking `first`'s polygon as the first clip polygon when
+    /// given, then the others in [`clip_order`].
+    fn new(screen: &ScreenScene, pieces: Vec<Piece>, first: Option<u32>) -> Level {
+        // Ranks by `first`, then `clip_order`. Each rank's live pieces form a chain through
+        // `next` from `head[rank]`, so the region of a clip polygon is found without a map of
+        // polygons (outside parts join their piece's chain).
+        let mut order: Vec<(u32, usize)> = pieces.iter().map(|p| p.poly).zip(0..).collect();
+        order.sort_by_cached_key(|&(k, i)| (Some(k) != first, clip_order(screen, k), i));
+        let mut rank_of_piece = vec![0u32; pieces.len()];
+        let mut ranks = 0u32;
+        for (n, &(poly, i)) in order.iter().enumerate() {
+            if n > 0 && order[n - 1].0 != poly {
+                ranks += 1;
+            }
+            rank_of_piece[i] = ranks;
+        }
+        let ranks = if pieces.is_empty() { 0 } else { ranks + 1 };
+        let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
+        let mut list = Live::over(&boxes, boxes.len());
+        let mut chains = Chains::new(ranks as usize, pieces.len());
+        for ((p, b), r) in pieces.into_iter().zip(boxes).zip(rank_of_piece) {
+            chains.push(r, list.add(p, b));
+        }
+        Level {
+            list,
+            chains,
+            ranks,
+            next: 0,
+        }
+    }
+}
+
+/// Writes the visible parts of `pieces` to `out`. `done(k)`: k clip polygons of the top level
+/// are done. False, with `out` incomplete, when `limit` is reached (checked at every clip
+/// polygon). The recursion of Weiler and Atherton is a stack of [`Level`]s on the heap, not on
+/// the call stack: it runs a thousand levels deep on some scenes (samurai_monastery), on
+/// worker threads with small stacks.
 fn resolve(
     screen: &ScreenScene,
     pieces: Vec<Piece>,
-    first: Option<u32>,
     out: &mut Vec<Piece>,
     st: &mut WeilerAthertonStats,
-    (level, limit): (usize, &Limit),
+    limit: &Limit,
     done: &mut dyn FnMut(u64),
 ) -> bool {
-    if limit.reached(level) {
-        return false;
-    }
-    st.deepest = st.deepest.max(level);
-    // Clip polygons in turn: ranks by `first`, then `clip_order`. Each rank's live pieces form
-    // a chain through `next` from `head[rank]`, so the region of a clip polygon is found without
-    // a map of polygons (outside parts join their piece's chain).
-    let mut order: Vec<(u32, usize)> = pieces.iter().map(|p| p.poly).zip(0..).collect();
-    order.sort_by_cached_key(|&(k, i)| (Some(k) != first, clip_order(screen, k), i));
-    let mut rank_of_piece = vec![0u32; pieces.len()];
-    let mut ranks = 0u32;
-    for (n, &(poly, i)) in order.iter().enumerate() {
-        if n > 0 && order[n - 1].0 != poly {
-            ranks += 1;
-        }
-        rank_of_piece[i] = ranks;
-    }
-    let ranks = if pieces.is_empty() { 0 } else { ranks + 1 };
-    let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
-    let mut list = Live::over(&boxes, boxes.len());
-    let mut chains = Chains::new(ranks as usize, pieces.len());
-    for ((p, b), r) in pieces.into_iter().zip(boxes).zip(rank_of_piece) {
-        chains.push(r, list.add(p, b));
-    }
+    let mut levels = vec![Level::new(screen, pieces, None)];
     let mut near = Vec::new();
     let mut outside = Vec::new();
-    for c in 0..ranks {
+    while let Some(level) = levels.len().checked_sub(1) {
         if limit.reached(level) {
             return false;
         }
-        done(c as u64);
+        st.deepest = st.deepest.max(level);
+        let Level {
+            list,
+            chains,
+            ranks,
+            next,
+        } = &mut levels[level];
+        if *next == *ranks {
+            levels.pop();
+            continue;
+        }
+        let c = *next;
+        *next += 1;
+        if level == 0 {
+            done(c as u64);
+        }
         let region: Vec<Piece> = chains.drain(c).filter_map(|v| list.take(v)).collect();
         if region.is_empty() {
             continue;
@@ -314,17 +343,7 @@ fn resolve(
             .expect("not empty");
         let mut inside = region;
         inside.extend(in_front);
-        if !resolve(
-            screen,
-            inside,
-            Some(offender),
-            out,
-            st,
-            (level + 1, limit),
-            &mut |_| {},
-        ) {
-            return false;
-        }
+        levels.push(Level::new(screen, inside, Some(offender)));
     }
     true
 }
@@ -334,6 +353,43 @@ mod tests {
     use super::*;
     use crate::exact::GridPoint;
     use crate::visibility::{initial_pieces, screen_of_polygons};
+
+    /// Rectangles over the same screen square, each tilted so that its nearest corner comes
+    /// after the previous one's while it lies in front of all of them over the right half: each
+    /// clip polygon finds the next one in front of it, one level deeper every time. Run on a
+    /// thread with a 256 KiB stack, the depth of the subdivision must not become the depth of
+    /// the call stack: the recursive version needed ~3 KiB a level (samurai_monastery, ~700
+    /// levels, overflowed a worker thread's 2 MiB), so 200 levels would need ~600 KiB.
+    #[test]
+    fn a_subdivision_hundreds_of_levels_deep_runs_on_a_small_stack() {
+        const N: i64 = 200;
+        const W: i64 = 1 << 20;
+        let planks = screen_of_polygons((0..N).map(|k| {
+            let (left, right) = (k, 10 * N - k);
+            vec![
+                GridPoint::new(0, 0, left),
+                GridPoint::new(W, 0, right),
+                GridPoint::new(W, W, right),
+                GridPoint::new(0, W, left),
+            ]
+        }));
+        let solved = std::thread::Builder::new()
+            .stack_size(256 << 10)
+            .spawn(move || {
+                let pieces = initial_pieces(&planks);
+                visible_pieces(&planks, pieces, None)
+            })
+            .expect("a thread")
+            .join()
+            .expect("no stack overflow");
+        let (visible, st) = solved;
+        assert!(st.deepest >= N as usize - 2, "{} levels deep", st.deepest);
+        // The first plank is nearest left of the middle, the last one right of it.
+        let mut shown: Vec<u32> = visible.iter().map(|p| p.poly).collect();
+        shown.sort_unstable();
+        shown.dedup();
+        assert_eq!(shown, [0, N as u32 - 1]);
+    }
 
     /// A strip of a scene stops as soon as another strip gave up (its work would be thrown
     /// away), and one that gives up tells the others.
