@@ -31,18 +31,15 @@
 
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
-use crate::exact::predicates::Line;
-use crate::exact::predicates::Wide;
+use crate::exact::predicates::crossing_rounded;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
 use crate::visibility::coverage::bounds;
 use crate::visibility::grid::{NearBoxes, for_each_near};
-use bnum::cast::As;
 use rustc_hash::FxHashMap;
 
 /// The unsigned counterpart of [`Wide`].
-type WideUnsigned = bnum::Uint<96>;
 use glam::DVec3;
 use std::cmp::Ordering;
 use std::collections::BTreeMap;
@@ -256,7 +253,7 @@ fn grid_point_of(p: &Piece, k: usize) -> Option<[i64; 2]> {
     let [x, y] = if e < 0.5 {
         [x.round(), y.round()]
     } else {
-        exact_crossing(l, m)?
+        crossing_rounded(l, m)?
     };
     let limit = crate::exact::GRID_MAX as f64;
     if x.fract() != 0.0 || y.fract() != 0.0 || x.abs() > limit || y.abs() > limit {
@@ -277,51 +274,9 @@ pub fn vertex_pixel(p: &Piece, k: usize, s: &Samples) -> [f64; 2] {
         [x, y]
     } else {
         let n = p.len();
-        exact_crossing(p.line((k + n - 1) % n), p.line(k)).unwrap_or([x, y])
+        crossing_rounded(p.line((k + n - 1) % n), p.line(k)).unwrap_or([x, y])
     };
     [s.col_of(x), s.row_of(y)]
-}
-
-/// Where two lines cross, each coordinate correctly rounded; `None` for parallel lines.
-pub(crate) fn exact_crossing(l: &Line, m: &Line) -> Option<[f64; 2]> {
-    let ([a0, b0, d0], [a1, b1, d1]) = (l.exact(), m.exact());
-    let den = a0 * b1 - a1 * b0;
-    (!den.is_zero()).then(|| {
-        [
-            ratio_f64(b0 * d1 - b1 * d0, den),
-            ratio_f64(a1 * d0 - a0 * d1, den),
-        ]
-    })
-}
-
-/// `n / d` correctly rounded to f64 (to nearest, ties to even); `d != 0`, and the quotient of
-/// crossing coordinates (far inside f64's normal range).
-fn ratio_f64(n: Wide, d: Wide) -> f64 {
-    if n.is_zero() {
-        return 0.0;
-    }
-    let negative = n.is_negative() != d.is_negative();
-    let (n, d): (WideUnsigned, WideUnsigned) = (n.unsigned_abs(), d.unsigned_abs());
-    // Scale so that q = floor(n·2^s / d) has 55 or 56 bits: 53 kept, then a rounding bit and
-    // more, and the remainder says whether anything lies below them.
-    let s = 55 + d.bit_width() as i32 - n.bit_width() as i32;
-    let (num, den) = if s >= 0 {
-        (n << s as u32, d)
-    } else {
-        (n, d << (-s) as u32)
-    };
-    let (q, r) = (num / den, num % den);
-    let extra = q.bit_width() - 53;
-    let kept: u64 = (q >> extra).as_();
-    // The bits dropped (two or three, so the low word holds them) and half of their unit.
-    let dropped = q.as_::<u64>() & ((1 << extra) - 1);
-    let half = 1 << (extra - 1);
-    let up = dropped > half || (dropped == half && (!r.is_zero() || kept & 1 == 1));
-    // At most 2^53: exact. The power of two is exact too.
-    let m = (kept + up as u64) as f64;
-    let exponent = extra as i32 - s;
-    let v = m * f64::from_bits(((exponent + 1023) as u64) << 52);
-    if negative { -v } else { v }
 }
 
 /// One connected region of a merge: its pieces and its rings.
@@ -530,24 +485,39 @@ impl Group<'_> {
             piece: self.members[i],
             vertex: k,
         };
+        let end = At {
+            piece: self.members[i],
+            vertex: (k + 1) % pa.len(),
+        };
+        let ends = [self.id(start), self.id(end)];
         let mut found: Vec<(f64, u32, At)> = Vec::new();
         for &j in near {
             let b = self.members[j];
             let pb = &self.pieces[b];
             for v in 0..pb.len() {
-                if pb.vertex_line_sign_with(v, line, approx) != Ordering::Equal {
+                let at = At {
+                    piece: b,
+                    vertex: v,
+                };
+                // The edge's own ends (the same exact point: most vertices on the line) are not
+                // inside it, and a vertex the f64 filter puts off the line is not either: both
+                // without exact arithmetic. Then the other lines (a vertex on the line beyond
+                // the edge is off one of them, usually by the filter), and last the exact test
+                // on the line, whose zero always takes the exact path.
+                let id = self.id(at);
+                if ends.contains(&id)
+                    || approx
+                        .sign_at(pb.point(v))
+                        .is_some_and(|s| s != Ordering::Equal)
+                {
                     continue;
                 }
                 let strictly_inside = pa.lines_with_approx().enumerate().all(|(l, (m, ma))| {
                     l == k || pb.vertex_line_sign_with(v, m, ma) == Ordering::Greater
                 });
-                if strictly_inside {
-                    let at = At {
-                        piece: b,
-                        vertex: v,
-                    };
+                if strictly_inside && pb.vertex_line_sign_with(v, line, approx) == Ordering::Equal {
                     let ([x0, y0], [x, y]) = (self.pixel(start), self.pixel(at));
-                    found.push(((x - x0).abs() + (y - y0).abs(), self.id(at), at));
+                    found.push(((x - x0).abs() + (y - y0).abs(), id, at));
                 }
             }
         }
@@ -761,6 +731,7 @@ impl UnionFind {
 pub(super) mod tests {
     use super::*;
     use crate::exact::polygon::{Boundary, Split};
+    use crate::exact::predicates::Line;
     use crate::exact::{GridPoint, Plane};
 
     /// A piece of polygon `poly` in the plane z = 0 with these grid corners (counter-clockwise,
@@ -1000,7 +971,7 @@ pub(super) mod tests {
         let third = 10.0 / 3.0;
         for (i, l) in lines.iter().enumerate() {
             for m in &lines[i + 1..] {
-                assert_eq!(exact_crossing(l, m), Some([third, third]));
+                assert_eq!(crossing_rounded(l, m), Some([third, third]));
             }
         }
         // Cut a square by the three lines: every piece's vertex there has the same pixels.
@@ -1067,37 +1038,5 @@ pub(super) mod tests {
             let corners = [[-10, 0], [10, 0], [10, 10], [0, 10], [0, 5], [-10, 5]];
             assert_eq!(rings(&pieces), region(&[&corners]));
         }
-    }
-
-    #[test]
-    fn ratios_are_correctly_rounded() {
-        let big = |v: i128| -> Wide { v.as_() };
-        // Below 2^53 both are exact in f64, and IEEE division rounds correctly.
-        let mut seed = 7u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
-        for _ in 0..10_000 {
-            let n = (next() >> 11) as i128 - (1 << 52);
-            let d = ((next() >> 11) as i128 | 1) * if next() & 1 == 0 { 1 } else { -1 };
-            assert_eq!(ratio_f64(big(n), big(d)), n as f64 / d as f64, "{n} / {d}");
-            // Scaling both by a power of two changes nothing.
-            let shift = (next() % 300) as u32;
-            assert_eq!(
-                ratio_f64(big(n) << shift, big(d) << shift),
-                n as f64 / d as f64
-            );
-        }
-        // Ties go to even: 2^53 + 1 lies halfway between 2^53 and 2^53 + 2.
-        let t = 1i128 << 53;
-        assert_eq!(ratio_f64(big(t + 1), big(1)), t as f64);
-        assert_eq!(ratio_f64(big(t + 3), big(1)), (t + 4) as f64);
-        // Just above the tie rounds up, just below rounds down.
-        assert_eq!(ratio_f64(big(2 * t + 3), big(2)), (t + 2) as f64);
-        assert_eq!(ratio_f64(big(2 * t + 1), big(2)), t as f64);
-        assert_eq!(ratio_f64(big(0), big(-5)), 0.0);
     }
 }

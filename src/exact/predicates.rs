@@ -44,6 +44,9 @@ use std::sync::Arc;
 /// The exact path's integers: 768 bits, enough for every determinant here (module docs).
 pub type Wide = bnum::Int<96>;
 
+/// The magnitudes of [`Wide`] values.
+type WideUnsigned = bnum::Uint<96>;
+
 thread_local! {
     static FALLBACKS: Cell<u64> = const { Cell::new(0) };
 }
@@ -653,6 +656,48 @@ pub fn crossing_f64(l: &Line, m: &Line) -> [f64; 2] {
     [f(b0 * d1 - b1 * d0) / f(den), f(a1 * d0 - a0 * d1) / f(den)]
 }
 
+/// Where two lines cross, each coordinate correctly rounded; `None` for parallel lines.
+pub fn crossing_rounded(l: &Line, m: &Line) -> Option<[f64; 2]> {
+    let ([a0, b0, d0], [a1, b1, d1]) = (l.exact(), m.exact());
+    let den = a0 * b1 - a1 * b0;
+    (!den.is_zero()).then(|| {
+        [
+            ratio_f64(b0 * d1 - b1 * d0, den),
+            ratio_f64(a1 * d0 - a0 * d1, den),
+        ]
+    })
+}
+
+/// `n / d` correctly rounded to f64 (to nearest, ties to even); `d != 0`, and the quotient of
+/// crossing coordinates (far inside f64's normal range).
+fn ratio_f64(n: Wide, d: Wide) -> f64 {
+    if n.is_zero() {
+        return 0.0;
+    }
+    let negative = n.is_negative() != d.is_negative();
+    let (n, d): (WideUnsigned, WideUnsigned) = (n.unsigned_abs(), d.unsigned_abs());
+    // Scale so that q = floor(n·2^s / d) has 55 or 56 bits: 53 kept, then a rounding bit and
+    // more, and the remainder says whether anything lies below them.
+    let s = 55 + d.bit_width() as i32 - n.bit_width() as i32;
+    let (num, den) = if s >= 0 {
+        (n << s as u32, d)
+    } else {
+        (n, d << (-s) as u32)
+    };
+    let (q, r) = (num / den, num % den);
+    let extra = q.bit_width() - 53;
+    let kept: u64 = (q >> extra).as_();
+    // The bits dropped (two or three, so the low word holds them) and half of their unit.
+    let dropped = q.as_::<u64>() & ((1 << extra) - 1);
+    let half = 1 << (extra - 1);
+    let up = dropped > half || (dropped == half && (!r.is_zero() || kept & 1 == 1));
+    // At most 2^53: exact. The power of two is exact too.
+    let m = (kept + up as u64) as f64;
+    let exponent = extra as i32 - s;
+    let v = m * f64::from_bits(((exponent + 1023) as u64) << 52);
+    if negative { -v } else { v }
+}
+
 /// Cramer's rule for a0·x + b0·y + d0 = 0, a1·x + b1·y + d1 = 0: (denominator, x and y
 /// numerators).
 fn crossing_terms([a0, b0, d0]: [Entry; 3], [a1, b1, d1]: [Entry; 3]) -> (f64, f64, f64) {
@@ -743,4 +788,41 @@ pub fn segments_cross(p0: GridPoint, p1: GridPoint, q0: GridPoint, q1: GridPoint
         return Crossing::Touch;
     }
     Crossing::Disjoint
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ratios_are_correctly_rounded() {
+        let big = |v: i128| -> Wide { v.as_() };
+        // Below 2^53 both are exact in f64, and IEEE division rounds correctly.
+        let mut seed = 7u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for _ in 0..10_000 {
+            let n = (next() >> 11) as i128 - (1 << 52);
+            let d = ((next() >> 11) as i128 | 1) * if next() & 1 == 0 { 1 } else { -1 };
+            assert_eq!(ratio_f64(big(n), big(d)), n as f64 / d as f64, "{n} / {d}");
+            // Scaling both by a power of two changes nothing.
+            let shift = (next() % 300) as u32;
+            assert_eq!(
+                ratio_f64(big(n) << shift, big(d) << shift),
+                n as f64 / d as f64
+            );
+        }
+        // Ties go to even: 2^53 + 1 lies halfway between 2^53 and 2^53 + 2.
+        let t = 1i128 << 53;
+        assert_eq!(ratio_f64(big(t + 1), big(1)), t as f64);
+        assert_eq!(ratio_f64(big(t + 3), big(1)), (t + 4) as f64);
+        // Just above the tie rounds up, just below rounds down.
+        assert_eq!(ratio_f64(big(2 * t + 3), big(2)), (t + 2) as f64);
+        assert_eq!(ratio_f64(big(2 * t + 1), big(2)), t as f64);
+        assert_eq!(ratio_f64(big(0), big(-5)), 0.0);
+    }
 }

@@ -11,9 +11,9 @@
 //! [`Carrier::pixel`]: each coordinate correctly rounded once, a function of the exact point
 //! alone, so a point named by two different line pairs gets the same bits.
 
-use crate::draw::regions::exact_crossing;
 use crate::exact::Samples;
 use crate::exact::U;
+use crate::exact::predicates::crossing_rounded;
 use crate::exact::predicates::{Line, Wide, crossing_with_error, heading};
 use bnum::cast::As;
 use bnum::types::I1024;
@@ -179,7 +179,9 @@ impl Carrier {
     pub fn pixel(&self, at: &At, s: &Samples) -> [f64; 2] {
         let [x, y] = match at {
             At::Grid([x, y]) => [*x as f64, *y as f64],
-            At::Cross(m) => exact_crossing(&self.line, m).expect("a crossing line is not parallel"),
+            At::Cross(m) => {
+                crossing_rounded(&self.line, m).expect("a crossing line is not parallel")
+            }
         };
         [s.col_of(x), s.row_of(y)]
     }

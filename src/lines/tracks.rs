@@ -728,7 +728,7 @@ fn track_box(track: &Track) -> [f64; 4] {
             // Correctly rounded: within half an ulp of the exact point.
             let [x, y] = match at {
                 At::Grid([x, y]) => [*x as f64, *y as f64],
-                At::Cross(m) => crate::draw::regions::exact_crossing(&track.carrier.line, m)
+                At::Cross(m) => crate::exact::predicates::crossing_rounded(&track.carrier.line, m)
                     .expect("a crossing line is not parallel"),
             };
             b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
