@@ -19,8 +19,8 @@
 //! so provenance survives every operation exactly, as the lines do.
 
 use super::predicates::{
-    Line, LineApprox, crossing_f64, crossing_with_error, depth_order_at, depth_order_filtered,
-    line_side, line_side_filtered, meet_side,
+    Line, LineApprox, crossing_f64, crossing_rounded, crossing_with_error, depth_order_at,
+    depth_order_filtered, line_side, line_side_filtered, meet_side,
 };
 use super::{GridPoint, Plane};
 use smallvec::SmallVec;
@@ -648,16 +648,35 @@ impl Piece {
     }
 }
 
-/// Where two lines cross with its error bound, as [`Piece::point`] holds it. The f64 point is
-/// `crossing_f64`'s (the same bits whatever the order of the lines).
+/// Where two lines cross with its error bound, as [`Piece::point`] holds it: `crossing_f64`'s
+/// point and bound when the bound is at most [`REFINE_POINT_ABOVE`], else the correctly rounded
+/// crossing within an ulp (the same bits whatever the order of the lines, either way).
 fn point_of(l: &Line, m: &Line) -> [f64; 3] {
     match crossing_with_error(l, m) {
-        Some(([x, y], e)) => [x, y, e],
-        None => {
-            let [x, y] = crossing_f64(l, m);
-            [x, y, f64::INFINITY]
-        }
+        Some(([x, y], e)) if e <= REFINE_POINT_ABOVE => [x, y, e],
+        _ => match crossing_rounded(l, m) {
+            Some([x, y]) => [x, y, ulp(x).max(ulp(y))],
+            None => {
+                let [x, y] = crossing_f64(l, m);
+                [x, y, f64::INFINITY]
+            }
+        },
     }
+}
+
+/// A vertex whose f64 crossing errs by more than this many grid units (lines crossing at a
+/// small angle) is computed exactly and rounded once instead: a loose bound would send every
+/// later test of the vertex near any line to the exact path. samurai_monastery's pieces had
+/// vertices with bounds up to 5e16 units (a tenth of the screen), each tested exactly against
+/// every edge near it when the regions were merged. Well-conditioned crossings err by a few
+/// units (f64's precision at the grid's 2^52 scale).
+const REFINE_POINT_ABOVE: f64 = 65536.0;
+
+/// The distance from `v` (finite) to the next f64 away from zero: a correctly rounded value is
+/// within half of it.
+fn ulp(v: f64) -> f64 {
+    let a = v.abs();
+    f64::from_bits(a.to_bits() + 1) - a
 }
 
 /// Where two face-edge lines cross, when that is a grid point, given the crossing in f64 with
