@@ -32,7 +32,7 @@ use super::occlusion::unhidden_pieces;
 use super::strips::{Strips, solve_strips};
 use super::tiling::tiles_convex_region_once;
 use super::visible_set::{Stats, VisibleSet, put_counts};
-use super::{CoverageMap, Strategy, initial_pieces, pieces_of, translucent_polygons};
+use super::{CoverageMap, Strategy, pieces_of, translucent_polygons};
 use super::{warnock_exact, weiler_atherton};
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::fallback_count;
@@ -163,18 +163,19 @@ impl Strategy for Auto {
             )),
             Orderer::WeilerAtherton => {
                 let pieces = std::mem::take(&mut overlapping);
+                // The polygons the pieces come from (increasing), to make them again if
+                // clipping gives up: cheaper than keeping a copy, and than proving the hidden
+                // ones hidden again (a polygon keeps all its pieces then: the map drops them).
+                let mut polys: Vec<u32> = pieces.iter().map(|p| p.poly).collect();
+                polys.dedup();
                 let clipped = by_clipping(screen, pieces, report, &mut stats, &skipped, &why);
                 if clipped.is_none() {
-                    // Given up, the pieces are made again (cheaper than keeping a copy).
                     given_up = format!(
                         "Weiler-Atherton clipping ({why}) given up at {DEEPEST_CLIP_RECURSION} \
                          levels of recursion; "
                     );
                     chosen = "coverage after weiler-atherton".into();
-                    overlapping = initial_pieces(screen)
-                        .into_iter()
-                        .filter(|p| !whole.placed[screen.polys[p.poly as usize].mesh as usize])
-                        .collect();
+                    overlapping = pieces_of(screen, &polys);
                 }
                 clipped
             }
@@ -188,17 +189,7 @@ impl Strategy for Auto {
                     _ => String::new(),
                 };
                 let told = format!("{skipped}{given_up}");
-                // Given-up clipping made the pieces again: the map's own cells drop them.
-                let occlusion = !given_up.is_empty();
-                by_map(
-                    screen,
-                    overlapping,
-                    occlusion,
-                    report,
-                    &mut stats,
-                    &told,
-                    &why,
-                )
+                by_map(screen, overlapping, report, &mut stats, &told, &why)
             }
         };
         visible.extend(pieces);
@@ -320,14 +311,14 @@ fn by_clipping(
 fn by_map(
     screen: &ScreenScene,
     pieces: Vec<Piece>,
-    occlusion: bool,
     report: Option<Report>,
     stats: &mut Stats,
     told: &str,
     why: &str,
 ) -> Vec<Piece> {
     let n = pieces.len();
-    let (visible, cs, strips) = visible_pieces(screen, pieces, report, occlusion);
+    // The pieces the occlusion cells prove hidden are gone already (`unhidden_pieces`).
+    let (visible, cs, strips) = visible_pieces(screen, pieces, report, false);
     stage(
         stats,
         "order",
@@ -722,6 +713,46 @@ mod tests {
         assert_eq!(chose(crowding(1.0, 2.5, 0.0, 2.5)), Orderer::WeilerAtherton);
         assert_eq!(chose(crowding(2.0, 2.9, 0.0, 2.5)), Orderer::CoverageMap);
         assert_eq!(chose(crowding(2.0, 2.5, 0.0, 8.0)), Orderer::WeilerAtherton);
+    }
+
+    /// Clipping chosen (large squares over many small triangles) and given up (the squares are
+    /// tilted so that each clip polygon finds the next one in front of it: more levels than
+    /// [`DEEPEST_CLIP_RECURSION`]): the map finishes the job with the pieces made again, and
+    /// the visible set is the map's.
+    #[test]
+    fn clipping_given_up_hands_every_piece_to_the_map() {
+        use crate::exact::GridPoint;
+        use crate::visibility::screen_of_polygons;
+        let planks = DEEPEST_CLIP_RECURSION as i64 + 20;
+        const W: i64 = 1 << 30;
+        let squares = (0..planks).map(|k| {
+            let (left, right) = (k, 10 * planks - k);
+            vec![
+                GridPoint::new(0, 0, left),
+                GridPoint::new(W, 0, right),
+                GridPoint::new(W, W, right),
+                GridPoint::new(0, W, left),
+            ]
+        });
+        // Small triangles far behind the squares, in a row along the bottom.
+        let small = (0..1000).map(|k| {
+            let (x, z) = (k * (W / 1000), 100 * planks);
+            vec![
+                GridPoint::new(x, 0, z),
+                GridPoint::new(x + 1000, 0, z),
+                GridPoint::new(x, 1000, z),
+            ]
+        });
+        let screen = screen_of_polygons(squares.chain(small));
+        let auto = Auto.visible_set(&screen, &|_| false, None);
+        assert_eq!(auto.stats["chosen"], "coverage after weiler-atherton");
+        let map = CoverageMap.visible_set(&screen, &|_| false, None);
+        assert!(auto.symmetric_difference(&map).is_empty());
+        // What shows: the first square left of the middle, the last one right of it.
+        let mut shown: Vec<u32> = auto.pieces.iter().map(|p| p.poly).collect();
+        shown.sort_unstable();
+        shown.dedup();
+        assert_eq!(shown, [0, planks as u32 - 1]);
     }
 
     #[test]
