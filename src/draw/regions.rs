@@ -36,7 +36,7 @@ use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
 use crate::visibility::coverage::bounds;
-use crate::visibility::grid::{NearBoxes, for_each_near};
+use crate::visibility::grid::for_each_near;
 use rustc_hash::FxHashMap;
 
 /// The unsigned counterpart of [`Wide`].
@@ -182,39 +182,28 @@ pub struct Vertices {
 /// later piece with the same point (decided exactly) takes both.
 ///
 /// Most vertices are grid points (input corners, and crossings that land on one): they are
-/// named by their integer coordinates in a hash map, without looking at any other piece. A
-/// vertex that is not known to be a corner is compared exactly with the vertices of the earlier
-/// pieces whose boxes meet its piece's, and, if it turns out to be a grid point, with the map,
-/// where it is entered when it is new: so a crossing and a corner at the same point share an
-/// id whichever comes first.
+/// named by their integer coordinates in a hash map, without looking at any other vertex. A
+/// vertex that is not known to be a corner is compared exactly with the earlier vertices whose
+/// f64 points lie within both error bounds of its own (found in a hash of square cells), and,
+/// if it turns out to be a grid point, with the map, where it is entered when it is new: so a
+/// crossing and a corner at the same point share an id whichever comes first.
 pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
-    let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
-    let mut near_boxes = NearBoxes::of(&boxes);
     let mut at_grid_point: FxHashMap<[i64; 2], ([f64; 2], u32)> = FxHashMap::default();
+    let mut near = NearVertices::default();
     let mut out = Vertices {
         pixels: Vec::with_capacity(pieces.len()),
         ids: Vec::with_capacity(pieces.len()),
     };
     let mut next = 0u32;
-    // The earlier pieces near the current one, found when one of its vertices first needs them.
-    let mut earlier: Vec<usize> = Vec::new();
     for (a, pa) in pieces.iter().enumerate() {
         let (mut pixels, mut ids) = (Vec::with_capacity(pa.len()), Vec::with_capacity(pa.len()));
-        let mut earlier_known = false;
         for k in 0..pa.len() {
             let (known, grid_point) = match pa.corner(k) {
                 Some(g) => (at_grid_point.get(&g).copied(), Some(g)),
                 None => {
-                    if !earlier_known {
-                        let near = near_boxes.of_box(a);
-                        earlier.clear();
-                        earlier.extend_from_slice(&near[..near.partition_point(|&b| b < a)]);
-                        earlier_known = true;
-                    }
-                    let same = earlier.iter().find_map(|&b| {
-                        (0..pieces[b].len())
-                            .find(|&v| pa.same_vertex(k, &pieces[b], v))
-                            .map(|v| (out.pixels[b][v], out.ids[b][v]))
+                    let same = near.find(pa.point(k), |b, v| {
+                        pa.same_vertex(k, &pieces[b], v)
+                            .then(|| (out.pixels[b][v], out.ids[b][v]))
                     });
                     match same {
                         Some(named) => (Some(named), None),
@@ -236,10 +225,75 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
             pixels.push(p);
             ids.push(id);
         }
+        // Entered after the piece: a piece's own vertices are distinct points.
+        for k in 0..pa.len() {
+            near.insert(pa.point(k), a, k);
+        }
         out.pixels.push(pixels);
         out.ids.push(ids);
     }
     out
+}
+
+/// Vertices by their f64 points ([`Piece::point`]: coordinates within an error bound of the
+/// exact point) in square cells of [`NearVertices::CELL`] grid units: two vertices that may be
+/// the same exact point lie within the sum of their bounds, at most
+/// [`Piece::POINT_ERROR_MAX`] each, so in one cell or in neighbouring ones. A vertex with a
+/// larger bound (none: piece vertices are refined below it) goes to a list every query reads.
+#[derive(Default)]
+struct NearVertices {
+    cells: FxHashMap<[i64; 2], Vec<(u32, u32)>>,
+    loose: Vec<(u32, u32)>,
+}
+
+impl NearVertices {
+    /// Twice the largest distance between two f64 points of one exact point: a query box
+    /// (that distance each way) meets at most two cells in each direction.
+    const CELL: f64 = 4.0 * Piece::POINT_ERROR_MAX;
+
+    fn cell(v: f64) -> i64 {
+        (v / Self::CELL).floor() as i64
+    }
+
+    fn bounded([x, y, e]: [f64; 3]) -> bool {
+        // Far inside i64 cells: the grid is below 2^60.
+        e <= Piece::POINT_ERROR_MAX && x.abs() < 1e18 && y.abs() < 1e18
+    }
+
+    fn insert(&mut self, point: [f64; 3], piece: usize, vertex: usize) {
+        let entry = (piece as u32, vertex as u32);
+        if Self::bounded(point) {
+            let [x, y, _] = point;
+            let key = [Self::cell(x), Self::cell(y)];
+            self.cells.entry(key).or_default().push(entry);
+        } else {
+            self.loose.push(entry);
+        }
+    }
+
+    /// The first `Some` of `same(piece, vertex)` over the vertices that may be `point`; every
+    /// vertex entered so far is tried when `point`'s own bound is too large for the cells.
+    fn find<T>(
+        &self,
+        point: [f64; 3],
+        mut same: impl FnMut(usize, usize) -> Option<T>,
+    ) -> Option<T> {
+        let mut try_all =
+            |list: &[(u32, u32)]| list.iter().find_map(|&(b, v)| same(b as usize, v as usize));
+        if let Some(t) = try_all(&self.loose) {
+            return Some(t);
+        }
+        if !Self::bounded(point) {
+            return self.cells.values().find_map(|list| try_all(list));
+        }
+        let [x, y, _] = point;
+        let reach = 2.0 * Piece::POINT_ERROR_MAX;
+        let (x0, x1) = (Self::cell(x - reach), Self::cell(x + reach));
+        let (y0, y1) = (Self::cell(y - reach), Self::cell(y + reach));
+        (x0..=x1)
+            .flat_map(|cx| (y0..=y1).map(move |cy| [cx, cy]))
+            .find_map(|key| self.cells.get(&key).and_then(|list| try_all(list)))
+    }
 }
 
 /// Vertex k of `p` (not a corner) as a grid point, if it is one (decided exactly): the only
@@ -954,6 +1008,39 @@ pub(super) mod tests {
         ]]);
         assert_eq!(rings(&three), pinched);
         assert_eq!(rings(&five), pinched);
+    }
+
+    /// Two f64 points of one exact point lie up to twice the largest error bound apart, across
+    /// cell borders; a point without a usable bound meets every other.
+    #[test]
+    fn near_vertices_finds_every_point_within_both_bounds() {
+        let e = Piece::POINT_ERROR_MAX;
+        let mut near = NearVertices::default();
+        let edge = NearVertices::CELL;
+        near.insert([edge - 1.0, -1.0, e], 0, 0);
+        let found = |near: &NearVertices, p: [f64; 3]| {
+            let mut all = Vec::new();
+            near.find(p, |b, v| {
+                all.push((b, v));
+                None::<()>
+            });
+            all
+        };
+        // Just within reach, in the neighbouring cells on both axes.
+        assert_eq!(
+            found(&near, [edge - 1.0 + 2.0 * e, 2.0 * e - 1.5, e]),
+            [(0, 0)]
+        );
+        assert_eq!(found(&near, [edge - 1.0 - 2.0 * e, -1.0, 0.0]), [(0, 0)]);
+        // Far away: not even tried.
+        assert!(found(&near, [edge - 1.0 + 3.0 * edge, -1.0, e]).is_empty());
+        // Unbounded points meet everything, both ways.
+        near.insert([1e300, 0.0, f64::INFINITY], 1, 2);
+        assert_eq!(found(&near, [-5.0 * edge, 0.0, 0.0]), [(1, 2)]);
+        assert_eq!(
+            found(&near, [f64::NAN, 0.0, f64::INFINITY]),
+            [(1, 2), (0, 0)]
+        );
     }
 
     #[test]

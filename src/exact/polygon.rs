@@ -97,8 +97,8 @@ struct Vertex {
     /// `line.approx()`, computed once: other pieces are tested against these lines.
     approx: LineApprox,
     /// The vertex in f64 grid coordinates with a proven error bound, (x, y, e): the exact vertex
-    /// is within e of (x, y) in each coordinate (e = 0 at grid corners, infinite where the
-    /// crossing is too ill-conditioned to bound). Computed once when the vertex is made: sign
+    /// is within e of (x, y) in each coordinate (e = 0 at grid corners, at most
+    /// [`Piece::POINT_ERROR_MAX`] elsewhere; see [`point_of`]). Computed once when the vertex is made: sign
     /// tests against many lines then cost a dot product each ([`LineApprox::sign_at`]).
     point: [f64; 3],
     /// Where line k comes from.
@@ -153,6 +153,11 @@ pub enum Split {
 }
 
 impl Piece {
+    /// The largest error bound of a vertex's f64 point ([`Piece::point`]): a crossing whose f64
+    /// solution would err more is computed exactly and rounded once (an ulp, at most 2 on the
+    /// grid). Only two parallel lines would have none: never adjacent lines of a piece.
+    pub const POINT_ERROR_MAX: f64 = REFINE_POINT_ABOVE;
+
     /// The piece of a convex grid polygon (counter-clockwise, y up) in `support`; `side(k)` is
     /// where its side from corner k to corner k + 1 comes from. Straight corners (a corner on the
     /// line through its neighbours, as T-junction vertices are) are dropped: two adjacent lines
