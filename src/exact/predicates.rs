@@ -44,9 +44,6 @@ use std::sync::Arc;
 /// The exact path's integers: 768 bits, enough for every determinant here (module docs).
 pub type Wide = bnum::Int<96>;
 
-/// The magnitudes of [`Wide`] values.
-type WideUnsigned = bnum::Uint<96>;
-
 thread_local! {
     static FALLBACKS: Cell<u64> = const { Cell::new(0) };
 }
@@ -658,6 +655,25 @@ pub fn crossing_f64(l: &Line, m: &Line) -> [f64; 2] {
 
 /// Where two lines cross, each coordinate correctly rounded; `None` for parallel lines.
 pub fn crossing_rounded(l: &Line, m: &Line) -> Option<[f64; 2]> {
+    // Two edges or vertical lines: a, b below 2^63 (i64), d below 2^127, so Cramer's numerators
+    // stay below 2^191, the denominator below 2^128, and the numerator ratio_f64 shifts to 55
+    // bits above the denominator below 2^184: 256 bits do, a third of the general width (most
+    // vertices of a visible set are edges crossing edges).
+    if let (Some(p), Some(q)) = (l.vertical_coefficients(), m.vertical_coefficients()) {
+        let ([a0, b0, d0], [a1, b1, d1]) = (p.map(w256), q.map(w256));
+        let den = a0 * b1 - a1 * b0;
+        return (!den.is_zero()).then(|| {
+            [
+                ratio_f64(b0 * d1 - b1 * d0, den),
+                ratio_f64(a1 * d0 - a0 * d1, den),
+            ]
+        });
+    }
+    crossing_rounded_wide(l, m)
+}
+
+/// [`crossing_rounded`] in the general width.
+fn crossing_rounded_wide(l: &Line, m: &Line) -> Option<[f64; 2]> {
     let ([a0, b0, d0], [a1, b1, d1]) = (l.exact(), m.exact());
     let den = a0 * b1 - a1 * b0;
     (!den.is_zero()).then(|| {
@@ -669,13 +685,14 @@ pub fn crossing_rounded(l: &Line, m: &Line) -> Option<[f64; 2]> {
 }
 
 /// `n / d` correctly rounded to f64 (to nearest, ties to even); `d != 0`, and the quotient of
-/// crossing coordinates (far inside f64's normal range).
-fn ratio_f64(n: Wide, d: Wide) -> f64 {
+/// crossing coordinates (far inside f64's normal range), with room in `N` bytes for the larger
+/// of n and d shifted left by 56 bits.
+fn ratio_f64<const N: usize>(n: bnum::Int<N>, d: bnum::Int<N>) -> f64 {
     if n.is_zero() {
         return 0.0;
     }
     let negative = n.is_negative() != d.is_negative();
-    let (n, d): (WideUnsigned, WideUnsigned) = (n.unsigned_abs(), d.unsigned_abs());
+    let (n, d): (bnum::Uint<N>, bnum::Uint<N>) = (n.unsigned_abs(), d.unsigned_abs());
     // Scale so that q = floor(n·2^s / d) has 55 or 56 bits: 53 kept, then a rounding bit and
     // more, and the remainder says whether anything lies below them.
     let s = 55 + d.bit_width() as i32 - n.bit_width() as i32;
@@ -793,6 +810,59 @@ pub fn segments_cross(p0: GridPoint, p1: GridPoint, q0: GridPoint, q1: GridPoint
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Edges (and vertical lines) cross in 256 bits exactly as in the general width, out to the
+    /// grid's extremes.
+    #[test]
+    fn edges_cross_in_256_bits_as_in_the_general_width() {
+        let mut seed = 11u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let max = super::super::GRID_MAX;
+        let mut coordinate = |scale: u32| {
+            let v = (next() >> (11 + scale)) as i64 % (max + 1);
+            if next() & 1 == 0 { v } else { -v }
+        };
+        let mut crossed = 0;
+        for case in 0..20_000 {
+            let scale = (case % 4) * 12;
+            let mut point = || GridPoint::new(coordinate(scale), coordinate(scale), 0);
+            let (Some(l), Some(m)) = (Line::edge(point(), point()), Line::edge(point(), point()))
+            else {
+                continue;
+            };
+            let fast = crossing_rounded(&l, &m);
+            assert_eq!(fast, crossing_rounded_wide(&l, &m), "{l:?} {m:?}");
+            crossed += fast.is_some() as usize;
+        }
+        assert!(crossed > 19_000, "{crossed}");
+        // Vertical lines at their extremes: a, b just below 2^63, d just below 2^127.
+        let big = |a: i128, b: i128, d: i128| {
+            Line::vertical(&Plane {
+                a,
+                b,
+                c: 0,
+                d: w256(d),
+            })
+        };
+        let (a, d) = ((1i128 << 63) - 1, i128::MAX);
+        let lines = [
+            big(a, -a + 1, d),
+            big(-a, a - 7, -d),
+            big(a - 3, a, d - 5),
+            big(1, 0, -(1 << 52)),
+            big(0, 1, 1 << 52),
+        ];
+        for l in &lines {
+            for m in &lines {
+                assert_eq!(crossing_rounded(l, m), crossing_rounded_wide(l, m));
+            }
+        }
+    }
 
     #[test]
     fn ratios_are_correctly_rounded() {
