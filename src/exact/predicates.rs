@@ -811,17 +811,21 @@ pub fn segments_cross(p0: GridPoint, p1: GridPoint, q0: GridPoint, q1: GridPoint
 mod tests {
     use super::*;
 
-    /// Edges (and vertical lines) cross in 256 bits exactly as in the general width, out to the
-    /// grid's extremes.
-    #[test]
-    fn edges_cross_in_256_bits_as_in_the_general_width() {
-        let mut seed = 11u64;
-        let mut next = || {
+    /// A small deterministic generator (xorshift64) for the tests' random values.
+    fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
+        move || {
             seed ^= seed << 13;
             seed ^= seed >> 7;
             seed ^= seed << 17;
             seed
-        };
+        }
+    }
+
+    /// Edges (and vertical lines) cross in 256 bits exactly as in the general width, out to the
+    /// grid's extremes.
+    #[test]
+    fn edges_cross_in_256_bits_as_in_the_general_width() {
+        let mut next = xorshift(11);
         let max = super::super::GRID_MAX;
         let mut coordinate = |scale: u32| {
             let v = (next() >> (11 + scale)) as i64 % (max + 1);
@@ -868,13 +872,7 @@ mod tests {
     fn ratios_are_correctly_rounded() {
         let big = |v: i128| -> Wide { v.as_() };
         // Below 2^53 both are exact in f64, and IEEE division rounds correctly.
-        let mut seed = 7u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = xorshift(7);
         for _ in 0..10_000 {
             let n = (next() >> 11) as i128 - (1 << 52);
             let d = ((next() >> 11) as i128 | 1) * if next() & 1 == 0 { 1 } else { -1 };

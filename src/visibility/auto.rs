@@ -715,25 +715,16 @@ mod tests {
         assert_eq!(chose(crowding(2.0, 2.5, 0.0, 8.0)), Orderer::WeilerAtherton);
     }
 
-    /// Clipping chosen (large squares over many small triangles) and given up (the squares are
-    /// tilted so that each clip polygon finds the next one in front of it: more levels than
-    /// [`DEEPEST_CLIP_RECURSION`]): the map finishes the job with the pieces made again, and
+    /// Clipping chosen (large squares over many small triangles) and given up (tilted squares,
+    /// [`tilted_squares`]: more levels than [`DEEPEST_CLIP_RECURSION`]): the map finishes the job with the pieces made again, and
     /// the visible set is the map's.
     #[test]
     fn clipping_given_up_hands_every_piece_to_the_map() {
         use crate::exact::GridPoint;
-        use crate::visibility::screen_of_polygons;
+        use crate::visibility::{screen_of_polygons, tilted_squares};
         let planks = DEEPEST_CLIP_RECURSION as i64 + 20;
         const W: i64 = 1 << 30;
-        let squares = (0..planks).map(|k| {
-            let (left, right) = (k, 10 * planks - k);
-            vec![
-                GridPoint::new(0, 0, left),
-                GridPoint::new(W, 0, right),
-                GridPoint::new(W, W, right),
-                GridPoint::new(0, W, left),
-            ]
-        });
+        let squares = tilted_squares(planks, W);
         // Small triangles far behind the squares, in a row along the bottom.
         let small = (0..1000).map(|k| {
             let (x, z) = (k * (W / 1000), 100 * planks);

@@ -182,6 +182,23 @@ pub fn pixel_ring(samples: &Samples, corners: &[GridPoint]) -> Vec<[f64; 2]> {
         .collect()
 }
 
+/// `n` squares of side `w` over the same screen square, each tilted so that its nearest corner
+/// comes after the previous one's while it lies in front of all of them right of the middle:
+/// each Weiler–Atherton clip polygon finds the next one in front of it, one level deeper
+/// every time. The first square is nearest left of the middle, the last one right of it.
+#[cfg(test)]
+pub(crate) fn tilted_squares(n: i64, w: i64) -> impl Iterator<Item = Vec<GridPoint>> {
+    (0..n).map(move |k| {
+        let (left, right) = (k, 10 * n - k);
+        vec![
+            GridPoint::new(0, 0, left),
+            GridPoint::new(w, 0, right),
+            GridPoint::new(w, w, right),
+            GridPoint::new(0, w, left),
+        ]
+    })
+}
+
 /// A screen scene (8 x 8 pixels) of the given polygons' grid corners, each its own face, all in
 /// mesh 0 (wound outwards: the counter-clockwise ones face the eye): the unit tests' scenes.
 #[cfg(test)]

@@ -352,11 +352,9 @@ fn resolve(
 mod tests {
     use super::*;
     use crate::exact::GridPoint;
-    use crate::visibility::{initial_pieces, screen_of_polygons};
+    use crate::visibility::{initial_pieces, screen_of_polygons, tilted_squares};
 
-    /// Rectangles over the same screen square, each tilted so that its nearest corner comes
-    /// after the previous one's while it lies in front of all of them over the right half: each
-    /// clip polygon finds the next one in front of it, one level deeper every time. Run on a
+    /// Tilted squares ([`tilted_squares`]): one level deeper at every clip polygon. Run on a
     /// thread with a 256 KiB stack, the depth of the subdivision must not become the depth of
     /// the call stack: the recursive version needed ~3 KiB a level (samurai_monastery, ~700
     /// levels, overflowed a worker thread's 2 MiB), so 200 levels would need ~600 KiB.
@@ -364,15 +362,7 @@ mod tests {
     fn a_subdivision_hundreds_of_levels_deep_runs_on_a_small_stack() {
         const N: i64 = 200;
         const W: i64 = 1 << 20;
-        let planks = screen_of_polygons((0..N).map(|k| {
-            let (left, right) = (k, 10 * N - k);
-            vec![
-                GridPoint::new(0, 0, left),
-                GridPoint::new(W, 0, right),
-                GridPoint::new(W, W, right),
-                GridPoint::new(0, W, left),
-            ]
-        }));
+        let planks = screen_of_polygons(tilted_squares(N, W));
         let solved = std::thread::Builder::new()
             .stack_size(256 << 10)
             .spawn(move || {
