@@ -248,7 +248,7 @@ struct NearVertices {
 
 impl NearVertices {
     /// Twice the largest distance between two f64 points of one exact point: a query box
-    /// (that distance each way) meets at most two cells in each direction.
+    /// (that distance each way) meets two cells in each direction, rarely three.
     const CELL: f64 = 4.0 * Piece::POINT_ERROR_MAX;
 
     fn cell(v: f64) -> i64 {
@@ -287,7 +287,8 @@ impl NearVertices {
             return self.cells.values().find_map(|list| try_all(list));
         }
         let [x, y, _] = point;
-        let reach = 2.0 * Piece::POINT_ERROR_MAX;
+        // Both bounds, and a little for the rounding of x - reach and x + reach.
+        let reach = 2.0 * Piece::POINT_ERROR_MAX + 16.0;
         let (x0, x1) = (Self::cell(x - reach), Self::cell(x + reach));
         let (y0, y1) = (Self::cell(y - reach), Self::cell(y + reach));
         (x0..=x1)

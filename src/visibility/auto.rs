@@ -167,6 +167,7 @@ impl Strategy for Auto {
                 // clipping gives up: cheaper than keeping a copy, and than proving the hidden
                 // ones hidden again (a polygon keeps all its pieces then: the map drops them).
                 let mut polys: Vec<u32> = pieces.iter().map(|p| p.poly).collect();
+                polys.sort_unstable();
                 polys.dedup();
                 let clipped = by_clipping(screen, pieces, report, &mut stats, &skipped, &why);
                 if clipped.is_none() {
