@@ -499,9 +499,8 @@ impl Group<'_> {
         let mut edges = Vec::new();
         let boxes: Vec<[f64; 4]> = members.iter().map(|&m| bounds(&pieces[m])).collect();
         for_each_near(&boxes, open, |i, near| {
-            let near: Vec<usize> = near.iter().copied().filter(|&j| open(j)).collect();
             for k in (0..pieces[members[i]].len()).filter(|&k| !whole[first[i] + k]) {
-                let mut points = self.inside_edge(i, k, &near);
+                let mut points = self.inside_edge(i, k, near);
                 points.push(at(i, k + 1));
                 let mut from = at(i, k);
                 for to in points {

@@ -86,10 +86,7 @@ pub fn shared_edges(
     let open = |a: usize| whole[a].iter().any(|w| !w);
     let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
     for_each_near(&boxes, open, |a, near| {
-        for &b in near
-            .iter()
-            .filter(|&&b| b > a && group(b) != group(a) && open(b))
-        {
+        for &b in near.iter().filter(|&&b| b > a && group(b) != group(a)) {
             for k in (0..pieces[a].len()).filter(|&k| !whole[a][k]) {
                 let (pa, pb) = ((a, &pieces[a]), (b, &pieces[b]));
                 if let Some(ends) = shared_part(pa, k, pb, &whole[b]) {

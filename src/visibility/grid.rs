@@ -110,17 +110,23 @@ pub(crate) fn sweep_overlapping(boxes: &[[i64; 4]], mut pair: impl FnMut(usize, 
     }
 }
 
-/// For every box `a` that `wanted(a)` selects, in order, calls `f(a, near)` with the other boxes
-/// whose closed extents meet box `a`'s, ascending: the candidate neighbours of `a` (a filter:
-/// the caller decides exactly).
+/// For every box `a` that `wanted(a)` selects, in order, calls `f(a, near)` with the other
+/// selected boxes whose closed extents meet box `a`'s, ascending: the candidate neighbours of
+/// `a` (a filter: the caller decides exactly). Only the selected boxes enter the grid (the open
+/// pieces of a drawing are a few of its pieces).
 pub(crate) fn for_each_near(
     boxes: &[[f64; 4]],
     wanted: impl Fn(usize) -> bool,
     mut f: impl FnMut(usize, &[usize]),
 ) {
-    let mut near = NearBoxes::of(boxes);
-    for a in (0..boxes.len()).filter(|&a| wanted(a)) {
-        f(a, near.of_box(a));
+    let chosen: Vec<usize> = (0..boxes.len()).filter(|&a| wanted(a)).collect();
+    let chosen_boxes: Vec<[f64; 4]> = chosen.iter().map(|&a| boxes[a]).collect();
+    let mut near = NearBoxes::of(&chosen_boxes);
+    let mut found = Vec::new();
+    for (k, &a) in chosen.iter().enumerate() {
+        found.clear();
+        found.extend(near.of_box(k).iter().map(|&j| chosen[j]));
+        f(a, &found);
     }
 }
 
