@@ -37,10 +37,8 @@ use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
 use crate::visibility::coverage::bounds;
 use crate::visibility::grid::for_each_near;
-use rustc_hash::FxHashMap;
-
-/// The unsigned counterpart of [`Wide`].
 use glam::DVec3;
+use rustc_hash::FxHashMap;
 use std::cmp::Ordering;
 use std::collections::BTreeMap;
 

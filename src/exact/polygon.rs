@@ -98,8 +98,9 @@ struct Vertex {
     approx: LineApprox,
     /// The vertex in f64 grid coordinates with a proven error bound, (x, y, e): the exact vertex
     /// is within e of (x, y) in each coordinate (e = 0 at grid corners, at most
-    /// [`Piece::POINT_ERROR_MAX`] elsewhere; see [`point_of`]). Computed once when the vertex is made: sign
-    /// tests against many lines then cost a dot product each ([`LineApprox::sign_at`]).
+    /// [`Piece::POINT_ERROR_MAX`] elsewhere; see [`point_of`]). Computed once when the vertex is
+    /// made: sign tests against many lines then cost a dot product each
+    /// ([`LineApprox::sign_at`]).
     point: [f64; 3],
     /// Where line k comes from.
     boundary: Boundary,
@@ -153,9 +154,9 @@ pub enum Split {
 }
 
 impl Piece {
-    /// The largest error bound of a vertex's f64 point ([`Piece::point`]): a crossing whose f64
-    /// solution would err more is computed exactly and rounded once (an ulp, at most 2 on the
-    /// grid). Only two parallel lines would have none: never adjacent lines of a piece.
+    /// The largest error bound of the f64 point a piece keeps for each vertex: a crossing whose
+    /// f64 solution would err more is computed exactly and rounded once (an ulp, at most 2 on
+    /// the grid). Only two parallel lines would have none: never adjacent lines of a piece.
     pub const POINT_ERROR_MAX: f64 = REFINE_POINT_ABOVE;
 
     /// The piece of a convex grid polygon (counter-clockwise, y up) in `support`; `side(k)` is
