@@ -660,21 +660,22 @@ pub fn crossing_rounded(l: &Line, m: &Line) -> Option<[f64; 2]> {
     // bits above the denominator below 2^184: 256 bits do, a third of the general width (most
     // vertices of a visible set are edges crossing edges).
     if let (Some(p), Some(q)) = (l.vertical_coefficients(), m.vertical_coefficients()) {
-        let ([a0, b0, d0], [a1, b1, d1]) = (p.map(w256), q.map(w256));
-        let den = a0 * b1 - a1 * b0;
-        return (!den.is_zero()).then(|| {
-            [
-                ratio_f64(b0 * d1 - b1 * d0, den),
-                ratio_f64(a1 * d0 - a0 * d1, den),
-            ]
-        });
+        return cramer_rounded(p.map(w256), q.map(w256));
     }
     crossing_rounded_wide(l, m)
 }
 
 /// [`crossing_rounded`] in the general width.
 fn crossing_rounded_wide(l: &Line, m: &Line) -> Option<[f64; 2]> {
-    let ([a0, b0, d0], [a1, b1, d1]) = (l.exact(), m.exact());
+    cramer_rounded(l.exact(), m.exact())
+}
+
+/// Cramer's rule for two lines' exact (a, b, d) in `N` bytes, each coordinate correctly rounded
+/// ([`ratio_f64`]); `None` for parallel lines.
+fn cramer_rounded<const N: usize>(
+    [a0, b0, d0]: [bnum::Int<N>; 3],
+    [a1, b1, d1]: [bnum::Int<N>; 3],
+) -> Option<[f64; 2]> {
     let den = a0 * b1 - a1 * b0;
     (!den.is_zero()).then(|| {
         [

@@ -230,7 +230,6 @@ impl Chains {
 struct Level {
     list: Live,
     chains: Chains,
-    ranks: u32,
     next: u32,
 }
 
@@ -261,7 +260,6 @@ impl Level {
         Level {
             list,
             chains,
-            ranks,
             next: 0,
         }
     }
@@ -288,13 +286,8 @@ fn resolve(
             return false;
         }
         st.deepest = st.deepest.max(level);
-        let Level {
-            list,
-            chains,
-            ranks,
-            next,
-        } = &mut levels[level];
-        if *next == *ranks {
+        let Level { list, chains, next } = &mut levels[level];
+        if *next as usize == chains.head.len() {
             levels.pop();
             continue;
         }
