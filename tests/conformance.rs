@@ -306,7 +306,12 @@ fn auto_clips_large_faces_over_many_small_ones() {
 /// sphere none.
 #[test]
 fn weiler_atherton_gives_up_only_beyond_its_recursion_limit() {
-    use sightline::visibility::{initial_pieces, weiler_atherton::visible_pieces_within};
+    use sightline::visibility::initial_pieces;
+    use sightline::visibility::weiler_atherton::{ClipBudget, visible_pieces_within};
+    let levels = |deepest| ClipBudget {
+        deepest,
+        ..ClipBudget::UNLIMITED
+    };
     let views = |scene: &sightline::scene::Scene| {
         let camera = Camera::fit(NamedView::Iso, scene.bounds().unwrap(), false, 40.0, 96, 80);
         prepare(scene, &camera, CullMode::Auto).screen
@@ -315,10 +320,11 @@ fn weiler_atherton_gives_up_only_beyond_its_recursion_limit() {
         &sightline::load(std::path::Path::new("fixtures/interpenetrating.obj"), None).unwrap(),
     );
     let pieces = initial_pieces(&crossing);
-    assert!(visible_pieces_within(&crossing, pieces.clone(), None, 0).is_none());
-    let (_, st) = visible_pieces_within(&crossing, pieces, None, 1).expect("one level is enough");
+    assert!(visible_pieces_within(&crossing, pieces.clone(), None, levels(0)).is_none());
+    let (_, st) =
+        visible_pieces_within(&crossing, pieces, None, levels(1)).expect("one level is enough");
     assert_eq!((st.recursions > 0, st.deepest), (true, 1));
     let sphere = views(&sightline::scene::primitives::sphere_scene(500));
-    let (_, st) = visible_pieces_within(&sphere, initial_pieces(&sphere), None, 0).unwrap();
+    let (_, st) = visible_pieces_within(&sphere, initial_pieces(&sphere), None, levels(0)).unwrap();
     assert_eq!(st.recursions, 0);
 }

@@ -32,8 +32,9 @@ use super::occlusion::unhidden_pieces;
 use super::strips::{Strips, solve_strips};
 use super::tiling::tiles_convex_region_once;
 use super::visible_set::{Stats, VisibleSet, put_counts};
+use super::warnock_exact;
+use super::weiler_atherton::{self, ClipBudget};
 use super::{CoverageMap, Strategy, pieces_of, translucent_polygons};
-use super::{warnock_exact, weiler_atherton};
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::fallback_count;
 use crate::progress::Report;
@@ -172,8 +173,10 @@ impl Strategy for Auto {
                 let clipped = by_clipping(screen, pieces, report, &mut stats, &skipped, &why);
                 if clipped.is_none() {
                     given_up = format!(
-                        "Weiler-Atherton clipping ({why}) given up at {DEEPEST_CLIP_RECURSION} \
-                         levels of recursion; "
+                        "Weiler-Atherton clipping ({why}) given up (deeper than \
+                         {} levels of recursion, or more than {} pieces handed down per clip \
+                         polygon); ",
+                        CLIP_BUDGET.deepest, CLIP_BUDGET.recursed_per_clip_polygon
                     );
                     chosen = "coverage after weiler-atherton".into();
                     overlapping = pieces_of(screen, &polys);
@@ -245,7 +248,7 @@ fn by_subdivision(
 }
 
 /// Orders `pieces` by Weiler–Atherton clipping, or gives up (`None`, nothing written to
-/// `stats`) past [`DEEPEST_CLIP_RECURSION`] levels.
+/// `stats`) past [`CLIP_BUDGET`].
 fn by_clipping(
     screen: &ScreenScene,
     pieces: Vec<Piece>,
@@ -260,13 +263,7 @@ fn by_clipping(
     // One strip giving up gives up the whole: the others stop at their next clip polygon.
     let stop = AtomicBool::new(false);
     let (visible, ws) = solve_strips(strips.cut(pieces), report, |strip, report| {
-        weiler_atherton::visible_pieces_within_or_stopped(
-            screen,
-            strip,
-            report,
-            DEEPEST_CLIP_RECURSION,
-            &stop,
-        )
+        weiler_atherton::visible_pieces_within_or_stopped(screen, strip, report, CLIP_BUDGET, &stop)
     })?;
     stage(
         stats,
@@ -428,6 +425,20 @@ pub const SLIVER_BOX_RATIO: f64 = 8.0;
 /// CAD meshes where clipping pays recurse up to 145 levels (octagonal_pocket; xarm6_link2 38,
 /// ur5e_upperarm 62, gears 10).
 pub const DEEPEST_CLIP_RECURSION: usize = 160;
+
+/// Weiler–Atherton clipping is also given up when its recursions hand down more pieces per clip
+/// polygon than this (counted once they outnumber the pieces given), the earlier sign of the
+/// same thing: samurai_monastery's strips pass 40 after 0.15 to 0.3 s and 160 levels after
+/// 0.45 to 0.6 s (74 to 105 per clip polygon then); the most seen where clipping pays is 24
+/// (a strip of ur5e_upperarm; octagonal_pocket 12.6, xarm6_link2 6.9; 256 px views, strips of
+/// two threads).
+pub const RECURSED_PER_CLIP_POLYGON: usize = 40;
+
+/// [`DEEPEST_CLIP_RECURSION`] and [`RECURSED_PER_CLIP_POLYGON`].
+pub const CLIP_BUDGET: ClipBudget = ClipBudget {
+    deepest: DEEPEST_CLIP_RECURSION,
+    recursed_per_clip_polygon: RECURSED_PER_CLIP_POLYGON,
+};
 
 /// The medians of [`Crowding`] are taken over an even sample of at most this many pieces.
 pub const MEDIAN_SAMPLE: usize = 4096;
@@ -717,8 +728,9 @@ mod tests {
     }
 
     /// Clipping chosen (large squares over many small triangles) and given up (tilted squares,
-    /// [`tilted_squares`]: more levels than [`DEEPEST_CLIP_RECURSION`]): the map finishes the job with the pieces made again, and
-    /// the visible set is the map's.
+    /// [`tilted_squares`]: more levels than [`DEEPEST_CLIP_RECURSION`], each handing all the
+    /// rest down): the map finishes the job with the pieces made again, and the visible set is
+    /// the map's.
     #[test]
     fn clipping_given_up_hands_every_piece_to_the_map() {
         use crate::exact::GridPoint;

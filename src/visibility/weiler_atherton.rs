@@ -51,6 +51,8 @@ pub struct WeilerAthertonStats {
     pub recursions: usize,
     /// The deepest level of recursion.
     pub deepest: usize,
+    /// Pieces handed to recursions (each level's pieces, counted at every level).
+    pub recursed: usize,
 }
 
 impl Counters for WeilerAthertonStats {
@@ -60,6 +62,7 @@ impl Counters for WeilerAthertonStats {
         self.hidden += o.hidden;
         self.recursions += o.recursions;
         self.deepest = self.deepest.max(o.deepest);
+        self.recursed += o.recursed;
     }
 }
 
@@ -85,6 +88,7 @@ impl Strategy for WeilerAtherton {
                         ("hidden_parts", st.hidden),
                         ("recursions", st.recursions),
                         ("deepest_recursion", st.deepest),
+                        ("recursed_pieces", st.recursed),
                     ],
                 );
             },
@@ -99,23 +103,48 @@ pub fn visible_pieces(
     pieces: Vec<Piece>,
     report: Option<Report>,
 ) -> (Vec<Piece>, WeilerAthertonStats) {
-    visible_pieces_within(screen, pieces, report, usize::MAX).expect("no limit on the recursion")
+    visible_pieces_within(screen, pieces, report, ClipBudget::UNLIMITED).expect("no limit")
 }
 
-/// [`visible_pieces`], given up (`None`) as soon as the recursion goes deeper than
-/// `deepest_allowed` levels: the sign of clip polygons that keep finding nearer polygons inside
-/// them (large faces whose nearest corner is near but whose body lies behind others), where
-/// the subdivision costs far more than the coverage map. `auto` falls back on the map then.
+/// How much work clipping may do before it is given up (for the coverage map, by `auto`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ClipBudget {
+    /// The deepest level of recursion allowed.
+    pub deepest: usize,
+    /// Pieces handed to recursions per clip polygon allowed, counted once they outnumber the
+    /// pieces given: recursions re-clip each clip polygon's inside list, and large faces whose
+    /// nearest corner is near but whose body lies behind others keep handing most of the
+    /// list down.
+    pub recursed_per_clip_polygon: usize,
+}
+
+impl ClipBudget {
+    /// No limit: clipping always finishes.
+    pub const UNLIMITED: ClipBudget = ClipBudget {
+        deepest: usize::MAX,
+        recursed_per_clip_polygon: usize::MAX,
+    };
+
+    /// True when the work so far, on `given` pieces, is over the budget.
+    fn spent(&self, st: &WeilerAthertonStats, given: usize) -> bool {
+        st.recursed > given
+            && st.recursed
+                > self
+                    .recursed_per_clip_polygon
+                    .saturating_mul(st.clip_polygons)
+    }
+}
+
+/// [`visible_pieces`], given up (`None`) as soon as the work exceeds `budget`: the sign of clip
+/// polygons that keep finding nearer polygons inside them, where the subdivision costs far
+/// more than the coverage map. `auto` falls back on the map then.
 pub fn visible_pieces_within(
     screen: &ScreenScene,
     pieces: Vec<Piece>,
     report: Option<Report>,
-    deepest_allowed: usize,
+    budget: ClipBudget,
 ) -> Option<(Vec<Piece>, WeilerAthertonStats)> {
-    let limit = Limit {
-        deepest: deepest_allowed,
-        stop: None,
-    };
+    let limit = Limit { budget, stop: None };
     within_limit(screen, pieces, report, &limit)
 }
 
@@ -125,11 +154,11 @@ pub(crate) fn visible_pieces_within_or_stopped(
     screen: &ScreenScene,
     pieces: Vec<Piece>,
     report: Option<Report>,
-    deepest_allowed: usize,
+    budget: ClipBudget,
     stop: &AtomicBool,
 ) -> Option<(Vec<Piece>, WeilerAthertonStats)> {
     let limit = Limit {
-        deepest: deepest_allowed,
+        budget,
         stop: Some(stop),
     };
     let solved = within_limit(screen, pieces, report, &limit);
@@ -139,15 +168,18 @@ pub(crate) fn visible_pieces_within_or_stopped(
     solved
 }
 
-/// When clipping gives up: past `deepest` levels of recursion, or once `stop` is set.
+/// When clipping gives up: past its budget, or once `stop` is set.
 struct Limit<'a> {
-    deepest: usize,
+    budget: ClipBudget,
     stop: Option<&'a AtomicBool>,
 }
 
 impl Limit<'_> {
-    fn reached(&self, level: usize) -> bool {
-        level > self.deepest || self.stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed))
+    /// True at `level` of the subdivision of `given` pieces after the work counted in `st`.
+    fn reached(&self, level: usize, st: &WeilerAthertonStats, given: usize) -> bool {
+        level > self.budget.deepest
+            || self.budget.spent(st, given)
+            || self.stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed))
     }
 }
 
@@ -278,11 +310,16 @@ fn resolve(
     limit: &Limit,
     done: &mut dyn FnMut(u64),
 ) -> bool {
+    let given = pieces.len();
+    // A strip another one stopped makes nothing (ordering the list is not free).
+    if limit.reached(0, st, given) {
+        return false;
+    }
     let mut levels = vec![Level::new(screen, pieces, None)];
     let mut near = Vec::new();
     let mut outside = Vec::new();
     while let Some(level) = levels.len().checked_sub(1) {
-        if limit.reached(level) {
+        if limit.reached(level, st, given) {
             return false;
         }
         st.deepest = st.deepest.max(level);
@@ -336,6 +373,7 @@ fn resolve(
             .expect("not empty");
         let mut inside = region;
         inside.extend(in_front);
+        st.recursed += inside.len();
         levels.push(Level::new(screen, inside, Some(offender)));
     }
     true
@@ -346,6 +384,14 @@ mod tests {
     use super::*;
     use crate::exact::GridPoint;
     use crate::visibility::{initial_pieces, screen_of_polygons, tilted_squares};
+
+    /// A budget of `deepest` levels and no other limit.
+    fn levels(deepest: usize) -> ClipBudget {
+        ClipBudget {
+            deepest,
+            ..ClipBudget::UNLIMITED
+        }
+    }
 
     /// Tilted squares ([`tilted_squares`]): one level deeper at every clip polygon. Run on a
     /// thread with a 256 KiB stack, the depth of the subdivision must not become the depth of
@@ -374,6 +420,43 @@ mod tests {
         assert_eq!(shown, [0, N as u32 - 1]);
     }
 
+    /// Clipping gives up when recursions re-handle more pieces per clip polygon than its
+    /// budget allows, but only once they have handed down more pieces than it was given: a
+    /// single recursion (two faces passing through each other) is never over budget.
+    #[test]
+    fn clipping_gives_up_when_recursions_rehandle_too_many_pieces_per_clip_polygon() {
+        let rehandling = |n| ClipBudget {
+            recursed_per_clip_polygon: n,
+            ..ClipBudget::UNLIMITED
+        };
+        // Tilted squares: each level hands all but one plank down again.
+        let planks = screen_of_polygons(tilted_squares(40, 1 << 20));
+        let pieces = initial_pieces(&planks);
+        let (_, st) = visible_pieces(&planks, pieces.clone(), None);
+        let per_clip = st.recursed / st.clip_polygons;
+        assert!(st.recursed > pieces.len() && per_clip >= 4, "{st:?}");
+        assert!(visible_pieces_within(&planks, pieces.clone(), None, rehandling(2)).is_none());
+        let solved = visible_pieces_within(&planks, pieces, None, rehandling(st.recursed));
+        assert_eq!(solved.map(|s| s.1), Some(st));
+        // Two faces passing through each other: both handed down once, no more than given.
+        let crossing = screen_of_polygons([
+            vec![
+                GridPoint::new(0, 0, 10),
+                GridPoint::new(100, 0, 10),
+                GridPoint::new(0, 100, 10),
+            ],
+            vec![
+                GridPoint::new(0, 0, 0),
+                GridPoint::new(100, 0, 20),
+                GridPoint::new(0, 100, 0),
+            ],
+        ]);
+        let pieces = initial_pieces(&crossing);
+        let (_, st) = visible_pieces_within(&crossing, pieces.clone(), None, rehandling(0))
+            .expect("within budget");
+        assert_eq!((st.recursions, st.recursed), (1, pieces.len()));
+    }
+
     /// A strip of a scene stops as soon as another strip gave up (its work would be thrown
     /// away), and one that gives up tells the others.
     #[test]
@@ -393,12 +476,14 @@ mod tests {
         ]);
         let pieces = initial_pieces(&crossing);
         let stop = AtomicBool::new(false);
-        let solved = visible_pieces_within_or_stopped(&crossing, pieces.clone(), None, 1, &stop);
+        let solved =
+            visible_pieces_within_or_stopped(&crossing, pieces.clone(), None, levels(1), &stop);
         assert!(solved.is_some() && !stop.load(AtomicOrdering::Relaxed));
         let stopped = AtomicBool::new(true);
-        let solved = visible_pieces_within_or_stopped(&crossing, pieces.clone(), None, 1, &stopped);
+        let solved =
+            visible_pieces_within_or_stopped(&crossing, pieces.clone(), None, levels(1), &stopped);
         assert!(solved.is_none(), "another strip gave up");
-        let solved = visible_pieces_within_or_stopped(&crossing, pieces, None, 0, &stop);
+        let solved = visible_pieces_within_or_stopped(&crossing, pieces, None, levels(0), &stop);
         assert!(
             solved.is_none() && stop.load(AtomicOrdering::Relaxed),
             "gave up and told"
