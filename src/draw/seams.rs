@@ -153,11 +153,21 @@ pub fn straight_runs(
 /// canonicalization of overlapping runs, on the rounded ends (equal bits are one point).
 fn union_along_line(segments: impl Iterator<Item = [[f64; 2]; 2]>) -> Vec<[[f64; 2]; 2]> {
     let mut segments: Vec<[[f64; 2]; 2]> = segments.collect();
-    let Some(&[p, q]) = segments.first() else {
+    // The line's direction from its longest segment: a short one may round to a point, or to
+    // two points differing in one coordinate only, which says nothing of the line.
+    let extent = |s: &[[f64; 2]; 2]| (s[1][0] - s[0][0]).abs().max((s[1][1] - s[0][1]).abs());
+    let Some(&[p, q]) = segments
+        .iter()
+        .max_by(|a, b| extent(a).total_cmp(&extent(b)))
+    else {
         return Vec::new();
     };
-    let axis = usize::from((q[1] - p[1]).abs() > (q[0] - p[0]).abs());
-    let key = |v: &[f64; 2]| (v[axis], v[1 - axis]);
+    let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+    let axis = usize::from(dy.abs() > dx.abs());
+    // Ends with the same coordinate on the longer axis are in order along the line by the
+    // other coordinate, increasing or decreasing as the line goes.
+    let other = if dx * dy < 0.0 { -1.0 } else { 1.0 };
+    let key = |v: &[f64; 2]| (v[axis], other * v[1 - axis]);
     let before = |a: &[f64; 2], b: &[f64; 2]| key(a).partial_cmp(&key(b)) == Some(Ordering::Less);
     for s in &mut segments {
         if before(&s[1], &s[0]) {
@@ -244,6 +254,31 @@ mod tests {
         // Apart: two segments, in order along the line.
         let got = union_along_line([seg(5.0, 6.0), seg(0.0, 1.0)].into_iter());
         assert_eq!(got, vec![seg(0.0, 1.0), seg(5.0, 6.0)]);
+    }
+
+    /// A seam along which y falls as x grows, continued by a part so short that its rounded ends
+    /// differ only in y (two exact vertices an ulp apart): the union reaches the far end,
+    /// whichever segment comes first (the BSP and the coverage map cut there differently).
+    #[test]
+    fn a_seam_continued_by_a_part_shorter_than_its_rounding_reaches_its_end() {
+        let end = [2.0, 1.0];
+        let beyond = [2.0, f64::from_bits(1.0f64.to_bits() - 1)];
+        let long = [[0.0, 2.0], end];
+        let tiny = [end, beyond];
+        let whole = vec![[[0.0, 2.0], beyond]];
+        assert_eq!(union_along_line([long, tiny].into_iter()), whole);
+        assert_eq!(union_along_line([tiny, long].into_iter()), whole);
+        assert_eq!(
+            union_along_line([[end, [0.0, 2.0]], tiny].into_iter()),
+            whole
+        );
+        // Where y grows with x, the part beyond has the larger y.
+        let beyond = [2.0, f64::from_bits(1.0f64.to_bits() + 1)];
+        let whole = vec![[[0.0, 0.0], beyond]];
+        assert_eq!(
+            union_along_line([[[0.0, 0.0], end], [end, beyond]].into_iter()),
+            whole
+        );
     }
     use crate::draw::regions::shared_vertices;
     use crate::draw::regions::tests::{grid_piece as piece, grid_samples, to_grid};
