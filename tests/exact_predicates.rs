@@ -393,9 +393,10 @@ fn piece_sign_shortcuts_agree_with_the_reference() {
 }
 
 /// Two lines so nearly parallel that the f64 denominator cancels to 0 still get a finite f64
-/// crossing (from exact integers), close to the exact one: vertices drawn never hold NaN.
+/// crossing (from exact integers), the exact one correctly rounded: vertices drawn never hold
+/// NaN.
 #[test]
-fn crossing_f64_of_nearly_parallel_lines_is_finite() {
+fn crossing_f64_of_nearly_parallel_lines_is_the_exact_crossing_rounded() {
     use sightline::exact::predicates::crossing_f64;
     let big = 1i64 << 60;
     let edge = |a: i64, b: i64, d: i128| {
@@ -406,15 +407,13 @@ fn crossing_f64_of_nearly_parallel_lines_is_finite() {
             d: sightline::exact::w256(d),
         })
     };
-    // det = (2^60 + 1)(2^60 - 1) - 2^60·2^60 = -1, but both products round to 2^120 in f64.
-    let l = edge(big + 1, big, 3);
-    let m = edge(big, big - 1, 5);
+    // det = (2^60 + 1)(2^60 + 3) - (2^60 + 4)·2^60 = 3, but both products round to 2^120 in
+    // f64. Rounding the numerators and then dividing by 3 gives an x one ulp off here.
+    let l = edge(big + 1, big, 54);
+    let m = edge(big + 4, big + 3, 55);
     let [x, y] = crossing_f64(&l, &m);
     assert!(x.is_finite() && y.is_finite(), "{x} {y}");
     let (rx, ry) = crossing([&l, &m]).unwrap();
-    let close = |v: f64, r: &Q| {
-        let r: f64 = num_traits::ToPrimitive::to_f64(r).unwrap();
-        (v - r).abs() <= 1e-9 * r.abs().max(1.0)
-    };
-    assert!(close(x, &rx) && close(y, &ry), "{x} {y} vs {rx} {ry}");
+    let rounded = |r: &Q| num_traits::ToPrimitive::to_f64(r).unwrap();
+    assert_eq!([x, y], [rounded(&rx), rounded(&ry)], "{rx} {ry}");
 }

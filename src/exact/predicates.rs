@@ -641,16 +641,10 @@ pub fn crossing_f64(l: &Line, m: &Line) -> [f64; 2] {
     if x.is_finite() && y.is_finite() {
         return [x, y];
     }
-    // Nearly parallel lines whose f64 denominator cancelled to 0: Cramer's rule in exact
-    // integers, converted once (the exact denominator is a nonzero integer, so the quotients
-    // are finite). Lines that are exactly parallel have no crossing: NaN, never used.
-    let ([a0, b0, d0], [a1, b1, d1]) = (l.exact(), m.exact());
-    let den = a0 * b1 - a1 * b0;
-    if den == zero() {
-        return [f64::NAN; 2];
-    }
-    let f = |v: Wide| -> f64 { super::int_to_f64(v.to_le_bytes()) };
-    [f(b0 * d1 - b1 * d0) / f(den), f(a1 * d0 - a0 * d1) / f(den)]
+    // Nearly parallel lines whose f64 denominator cancelled to 0: the crossing from exact
+    // integers, correctly rounded. Lines that are exactly parallel have no crossing: NaN, never
+    // used.
+    crossing_rounded(l, m).unwrap_or([f64::NAN; 2])
 }
 
 /// Where two lines cross, each coordinate correctly rounded; `None` for parallel lines.
