@@ -649,7 +649,7 @@ pub fn mark_occluded(pieces: &[Piece], tracks: &mut [Track]) {
         .iter()
         .map(crate::visibility::coverage::bounds)
         .collect();
-    let mut grid = BoxGrid::holding(&boxes);
+    let grid = BoxGrid::holding(&boxes);
     let mut near: Vec<u32> = Vec::new();
     for t in which {
         let track = &tracks[t];
@@ -747,7 +747,7 @@ pub fn mark_faces_in_front(screen: &ScreenScene, tracks: &mut [Track]) {
         .iter()
         .map(|p| super::intersections::points_box(screen.corners(p)))
         .collect();
-    let mut grid = BoxGrid::holding(&boxes);
+    let grid = BoxGrid::holding(&boxes);
     let mut parts: Vec<Option<Vec<Vec<Line>>>> = vec![None; polys.len()];
     let mut near: Vec<u32> = Vec::new();
     for track in tracks.iter_mut() {

@@ -61,9 +61,9 @@ impl BoxGrid {
 
     /// The entries listed in the cells that `b` covers, each once, ascending, into `near`
     /// (cleared first).
-    pub fn entries_near(&mut self, b: &[f64; 4], near: &mut Vec<u32>) {
+    pub fn entries_near(&self, b: &[f64; 4], near: &mut Vec<u32>) {
         near.clear();
-        self.visit(b, |_| true, |i| near.push(i));
+        self.visit_all(b, |i| near.push(i));
         near.sort_unstable();
         near.dedup();
     }
@@ -75,6 +75,16 @@ impl BoxGrid {
             for i in i0..=i1 {
                 self.buckets[j * self.cells + i].push(index);
             }
+        }
+    }
+
+    /// Calls `f` with every entry listed in a cell that `b` covers (an entry may come more than
+    /// once).
+    pub fn visit_all(&self, b: &[f64; 4], mut f: impl FnMut(u32)) {
+        let (i0, i1, j0, j1) = self.range(b);
+        let rows = &self.buckets[j0 * self.cells..(j1 + 1) * self.cells];
+        for row in rows.chunks_exact(self.cells) {
+            row[i0..=i1].iter().flatten().for_each(|&v| f(v));
         }
     }
 
@@ -156,24 +166,20 @@ impl<'b> NearBoxes<'b> {
         let (boxes, near, seen) = (self.boxes, &mut self.near, &mut self.seen);
         let ba = &boxes[a];
         near.clear();
-        self.grid.visit(
-            ba,
-            |_| true,
-            |b| {
-                let b = b as usize;
-                let bb = &boxes[b];
-                if b != a
-                    && seen[b] != a
-                    && ba[0] <= bb[2]
-                    && bb[0] <= ba[2]
-                    && ba[1] <= bb[3]
-                    && bb[1] <= ba[3]
-                {
-                    seen[b] = a;
-                    near.push(b);
-                }
-            },
-        );
+        self.grid.visit_all(ba, |b| {
+            let b = b as usize;
+            let bb = &boxes[b];
+            if b != a
+                && seen[b] != a
+                && ba[0] <= bb[2]
+                && bb[0] <= ba[2]
+                && ba[1] <= bb[3]
+                && bb[1] <= ba[3]
+            {
+                seen[b] = a;
+                near.push(b);
+            }
+        });
         near.sort_unstable();
         near
     }
