@@ -196,7 +196,14 @@ impl Strategy for Auto {
                 by_map(screen, overlapping, report, &mut stats, &told, &why)
             }
         };
-        visible.extend(pieces);
+        // Most scenes place nothing whole: then the ordered pieces are the set, not copied (a
+        // copy of a few hundred bytes a piece into fresh memory, page faults included, cost
+        // igea 15 % of its time).
+        if visible.is_empty() {
+            visible = pieces;
+        } else {
+            visible.extend(pieces);
+        }
         stats.insert("chosen".into(), chosen.into());
         VisibleSet::exact(screen, visible, Vec::new(), stats, fallbacks)
     }

@@ -220,7 +220,9 @@ pub(crate) fn solve_strips<C: Counters>(
     }
     let fallbacks: u64 = solved.iter().map(|s| s.1).sum();
     add_fallbacks(fallbacks.saturating_sub(own));
-    let mut pieces = Vec::new();
+    // One allocation of the final size: growing by doubling would copy the pieces again.
+    let total = solved.iter().flat_map(|s| &s.0).map(|(p, _)| p.len()).sum();
+    let mut pieces = Vec::with_capacity(total);
     let mut counters = C::default();
     for (strip, _) in solved {
         let (p, c) = strip?;
