@@ -385,6 +385,22 @@ mod tests {
     use crate::exact::GridPoint;
     use crate::visibility::{initial_pieces, screen_of_polygons, tilted_squares};
 
+    /// Two triangles passing through each other: one level of recursion.
+    fn crossing_triangles() -> ScreenScene {
+        screen_of_polygons([
+            vec![
+                GridPoint::new(0, 0, 10),
+                GridPoint::new(100, 0, 10),
+                GridPoint::new(0, 100, 10),
+            ],
+            vec![
+                GridPoint::new(0, 0, 0),
+                GridPoint::new(100, 0, 20),
+                GridPoint::new(0, 100, 0),
+            ],
+        ])
+    }
+
     /// A budget of `deepest` levels and no other limit.
     fn levels(deepest: usize) -> ClipBudget {
         ClipBudget {
@@ -439,18 +455,7 @@ mod tests {
         let solved = visible_pieces_within(&planks, pieces, None, rehandling(st.recursed));
         assert_eq!(solved.map(|s| s.1), Some(st));
         // Two faces passing through each other: both handed down once, no more than given.
-        let crossing = screen_of_polygons([
-            vec![
-                GridPoint::new(0, 0, 10),
-                GridPoint::new(100, 0, 10),
-                GridPoint::new(0, 100, 10),
-            ],
-            vec![
-                GridPoint::new(0, 0, 0),
-                GridPoint::new(100, 0, 20),
-                GridPoint::new(0, 100, 0),
-            ],
-        ]);
+        let crossing = crossing_triangles();
         let pieces = initial_pieces(&crossing);
         let (_, st) = visible_pieces_within(&crossing, pieces.clone(), None, rehandling(0))
             .expect("within budget");
@@ -461,19 +466,7 @@ mod tests {
     /// away), and one that gives up tells the others.
     #[test]
     fn a_strip_stops_once_another_gave_up_and_tells_the_others_when_it_gives_up() {
-        // Two triangles passing through each other: one level of recursion.
-        let crossing = screen_of_polygons([
-            vec![
-                GridPoint::new(0, 0, 10),
-                GridPoint::new(100, 0, 10),
-                GridPoint::new(0, 100, 10),
-            ],
-            vec![
-                GridPoint::new(0, 0, 0),
-                GridPoint::new(100, 0, 20),
-                GridPoint::new(0, 100, 0),
-            ],
-        ]);
+        let crossing = crossing_triangles();
         let pieces = initial_pieces(&crossing);
         let stop = AtomicBool::new(false);
         let solved =
