@@ -305,6 +305,7 @@ fn by_clipping(
             ("clipped", ws.clipped),
             ("hidden_parts", ws.hidden),
             ("recursions", ws.recursions),
+            ("recursed_pieces", ws.recursed),
             ("strips", strip_count),
         ],
     );
