@@ -26,7 +26,7 @@
 //! is the coverage map's whatever ran (every exact strategy's is), so the drawing's bytes are
 //! the same.
 
-use super::coverage_map::visible_pieces;
+use super::coverage_map::visible_pieces_of_strips;
 use super::grid::sweep_overlapping;
 use super::occlusion::unhidden_pieces;
 use super::strips::{Strips, solve_strips};
@@ -39,6 +39,7 @@ use crate::exact::polygon::Piece;
 use crate::exact::predicates::fallback_count;
 use crate::progress::Report;
 use crate::project::ScreenScene;
+use rayon::prelude::*;
 use std::sync::atomic::AtomicBool;
 
 /// The automatic strategy. See the module docs.
@@ -150,8 +151,10 @@ impl Strategy for Auto {
             _ => orderer.name(),
         }
         .to_string();
-        // Each orderer writes its stage lines and counters; clipping may give up for the map.
+        // Each orderer writes its stage lines and counters; clipping may give up for the map,
+        // handing it the pieces already cut into strips.
         let mut given_up = String::new();
+        let mut cut = None;
         let ordered = match orderer {
             _ if n == 0 => None,
             Orderer::Warnock => Some(by_subdivision(
@@ -164,24 +167,20 @@ impl Strategy for Auto {
             )),
             Orderer::WeilerAtherton => {
                 let pieces = std::mem::take(&mut overlapping);
-                // The polygons the pieces come from (increasing), to make them again if
-                // clipping gives up: cheaper than keeping a copy, and than proving the hidden
-                // ones hidden again (a polygon keeps all its pieces then: the map drops them).
-                let mut polys: Vec<u32> = pieces.iter().map(|p| p.poly).collect();
-                polys.sort_unstable();
-                polys.dedup();
-                let clipped = by_clipping(screen, pieces, report, &mut stats, &skipped, &why);
-                if clipped.is_none() {
-                    given_up = format!(
-                        "Weiler-Atherton clipping ({why}) given up (deeper than \
-                         {} levels of recursion, or more than {} pieces handed down per clip \
-                         polygon); ",
-                        CLIP_BUDGET.deepest, CLIP_BUDGET.recursed_per_clip_polygon
-                    );
-                    chosen = "coverage after weiler-atherton".into();
-                    overlapping = pieces_of(screen, &polys);
+                match by_clipping(screen, pieces, report, &mut stats, &skipped, &why) {
+                    Ok(visible) => Some(visible),
+                    Err(strips) => {
+                        given_up = format!(
+                            "Weiler-Atherton clipping ({why}) given up (deeper than {} levels \
+                             of recursion, or more than {} pieces handed down per clip \
+                             polygon); ",
+                            CLIP_BUDGET.deepest, CLIP_BUDGET.recursed_per_clip_polygon
+                        );
+                        chosen = "coverage after weiler-atherton".into();
+                        cut = Some((n, strips));
+                        None
+                    }
                 }
-                clipped
             }
             Orderer::CoverageMap => None,
         };
@@ -193,7 +192,11 @@ impl Strategy for Auto {
                     _ => String::new(),
                 };
                 let told = format!("{skipped}{given_up}");
-                by_map(screen, overlapping, report, &mut stats, &told, &why)
+                let strips = cut.unwrap_or_else(|| {
+                    let pieces = std::mem::take(&mut overlapping);
+                    (n, Strips::for_pieces(&pieces).cut(pieces))
+                });
+                by_map(screen, strips, report, &mut stats, &told, &why)
             }
         };
         // Most scenes place nothing whole: then the ordered pieces are the set, not copied (a
@@ -254,8 +257,8 @@ fn by_subdivision(
     visible
 }
 
-/// Orders `pieces` by Weiler–Atherton clipping, or gives up (`None`, nothing written to
-/// `stats`) past [`CLIP_BUDGET`].
+/// Orders `pieces` by Weiler–Atherton clipping, or gives up past [`CLIP_BUDGET`] and returns
+/// them cut into strips for the map (nothing written to `stats` then).
 fn by_clipping(
     screen: &ScreenScene,
     pieces: Vec<Piece>,
@@ -263,15 +266,23 @@ fn by_clipping(
     stats: &mut Stats,
     skipped: &str,
     why: &str,
-) -> Option<Vec<Piece>> {
+) -> Result<Vec<Piece>, Vec<Vec<Piece>>> {
     let n = pieces.len();
     let strips = Strips::for_pieces(&pieces);
     let strip_count = strips.count();
+    let cut = strips.cut(pieces);
+    // A copy of the strips for the map, should clipping give up (clipping consumes its
+    // pieces): samurai_monastery's copy took 40-90 ms, making its pieces again and cutting
+    // them again 0.2 s.
+    let spare: Vec<Vec<Piece>> = cut.par_iter().map(|strip| strip.clone()).collect();
     // One strip giving up gives up the whole: the others stop at their next clip polygon.
     let stop = AtomicBool::new(false);
-    let (visible, ws) = solve_strips(strips.cut(pieces), report, |strip, report| {
+    let Some((visible, ws)) = solve_strips(cut, report, |strip, report| {
         weiler_atherton::visible_pieces_within_or_stopped(screen, strip, report, CLIP_BUDGET, &stop)
-    })?;
+    }) else {
+        return Err(spare);
+    };
+    drop(spare);
     stage(
         stats,
         "order",
@@ -309,22 +320,23 @@ fn by_clipping(
             ("strips", strip_count),
         ],
     );
-    Some(visible)
+    Ok(visible)
 }
 
-/// Orders `pieces` in the coverage map. `told`: what the order line starts with (meshes placed
-/// whole, a given-up attempt); `why`: the reason when the map was the choice.
+/// Orders the `n` pieces cut into `strips` in the coverage map, strip by strip. `told`: what
+/// the order line starts with (meshes placed whole, a given-up attempt); `why`: the reason when
+/// the map was the choice.
 fn by_map(
     screen: &ScreenScene,
-    pieces: Vec<Piece>,
+    (n, strips): (usize, Vec<Vec<Piece>>),
     report: Option<Report>,
     stats: &mut Stats,
     told: &str,
     why: &str,
 ) -> Vec<Piece> {
-    let n = pieces.len();
+    let strip_count = strips.len();
     // The pieces the occlusion cells prove hidden are gone already (`unhidden_pieces`).
-    let (visible, cs, strips) = visible_pieces(screen, pieces, report, false);
+    let (visible, cs) = visible_pieces_of_strips(screen, strips, report);
     stage(
         stats,
         "order",
@@ -367,7 +379,7 @@ fn by_map(
             ("overlap_tests", cs.overlap_tests),
             ("replaced", cs.replaced),
             ("plane_splits", cs.plane_splits),
-            ("strips", strips),
+            ("strips", strip_count),
         ],
     );
     visible

@@ -120,14 +120,24 @@ pub(crate) fn visible_pieces(
     } else {
         0
     };
-    let (visible, mut stats) = solve_strips(strips.cut(pieces), report, |strip, report| {
+    let (visible, mut stats) = visible_pieces_of_strips(screen, strips.cut(pieces), report);
+    stats.dropped_before_insertion(occluded);
+    (visible, stats, strips.count())
+}
+
+/// The visible pieces of `strips` (pieces already cut into strips, [`Strips::cut`]) by the
+/// coverage map of each strip, on all cores, with the map's counters summed.
+pub(crate) fn visible_pieces_of_strips(
+    screen: &ScreenScene,
+    strips: Vec<Vec<Piece>>,
+    report: Option<Report>,
+) -> (Vec<Piece>, CoverageStats) {
+    solve_strips(strips, report, |strip, report| {
         let coverage = coverage_of(screen, strip, report, false);
         let stats = coverage.stats.clone();
         Some((coverage.into_pieces(), stats))
     })
-    .expect("the coverage map never gives up");
-    stats.dropped_before_insertion(occluded);
-    (visible, stats, strips.count())
+    .expect("the coverage map never gives up")
 }
 
 /// The coverage map of `pieces`, inserted nearest corner first, reporting stage "visible set";
