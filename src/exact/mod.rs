@@ -44,6 +44,7 @@
 //! in [`Fallbacks`] or [`predicates::fallback_count`]. The bounds are relative to the magnitudes
 //! of the terms, so they do not depend on the scale of the integers.
 
+pub mod big;
 pub mod polygon;
 pub mod predicates;
 

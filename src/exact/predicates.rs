@@ -20,8 +20,10 @@
 //! - the meeting point of three support planes against a fourth, `det4` of plane rows, below
 //!   2^500.
 //!
-//! so the exact path computes in 768-bit integers ([`Wide`]): fixed width, no growth however
-//! often a polygon is split, because every line and plane is built from input planes only.
+//! so the exact path computes in integers of at most 768 bits: fixed width, no growth however
+//! often a polygon is split, because every line and plane is built from input planes only. The
+//! predicates' fallbacks use [`super::big::Big`], whose products cost the limbs their operands
+//! have; [`Line::exact`] gives the coefficients as [`Wide`] for callers that divide.
 //!
 //! **Filter.** Every predicate first evaluates its determinant in f64. Each entry is carried with
 //! a magnitude `M >= |entry|` and an error below `5·U·M`: an input coefficient is rounded once
@@ -34,6 +36,7 @@
 //! `|det| > 32·U·perm(M)`, the f64 sign is the exact sign; otherwise the 768-bit computation
 //! decides. Each fallback is counted ([`fallback_count`]).
 
+use super::big::Big;
 use super::{GridPoint, Plane, U, i128_to_f64, i256_to_f64, w256};
 use bnum::cast::As;
 use bnum::types::{I256, I512};
@@ -390,15 +393,35 @@ impl Line {
         }
     }
 
+    /// [`Self::exact`] as [`Big`]s, the fallbacks' integers: products cost the limbs the
+    /// coefficients have (an edge's two, a cut's four or five), not the full width.
+    fn exact_big(&self) -> [Big; 3] {
+        match self {
+            Line::Edge(_) | Line::Vertical(_) => self
+                .vertical_coefficients()
+                .expect("a vertical line")
+                .map(Big::from_i128),
+            Line::Cut(p, q) => {
+                let (pc, qc) = (Big::from_i128(p.c), Big::from_i128(q.c));
+                let of = |pv: i128, qv: i128| qc * Big::from_i128(pv) - pc * Big::from_i128(qv);
+                [
+                    of(p.a, q.a),
+                    of(p.b, q.b),
+                    qc * Big::from_i256(p.d) - pc * Big::from_i256(q.d),
+                ]
+            }
+        }
+    }
+
     /// The line as a plane row (a, b, 0, d) for 4x4 determinants.
     fn filtered_row(&self) -> [Entry; 4] {
         let [a, b, d] = self.filtered();
         [a, b, entry(0.0), d]
     }
 
-    fn exact_row(&self) -> [Wide; 4] {
-        let [a, b, d] = self.exact();
-        [a, b, zero(), d]
+    fn exact_row(&self) -> [Big; 4] {
+        let [a, b, d] = self.exact_big();
+        [a, b, Big::ZERO, d]
     }
 }
 
@@ -417,10 +440,6 @@ fn wide_256(v: I256) -> Wide {
     v.as_()
 }
 
-fn zero() -> Wide {
-    wide(0)
-}
-
 fn plane_filtered(p: &Plane) -> [Entry; 4] {
     [
         entry(i128_to_f64(p.a)),
@@ -430,8 +449,13 @@ fn plane_filtered(p: &Plane) -> [Entry; 4] {
     ]
 }
 
-fn plane_exact(p: &Plane) -> [Wide; 4] {
-    [wide(p.a), wide(p.b), wide(p.c), wide_256(p.d)]
+fn plane_exact(p: &Plane) -> [Big; 4] {
+    [
+        Big::from_i128(p.a),
+        Big::from_i128(p.b),
+        Big::from_i128(p.c),
+        Big::from_i256(p.d),
+    ]
 }
 
 /// Laplace expansion of a 3x3 determinant in f64, with the permanent of the magnitudes.
@@ -450,7 +474,7 @@ fn det3_f64(m: [[Entry; 3]; 3]) -> (f64, f64) {
     (det, perm)
 }
 
-fn det3_exact(m: [[Wide; 3]; 3]) -> Wide {
+fn det3_exact(m: [[Big; 3]; 3]) -> Big {
     m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
         - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
@@ -486,10 +510,10 @@ fn det4_f64(m: [[Entry; 4]; 4]) -> (f64, f64) {
     (det, perm)
 }
 
-fn det4_exact(m: [[Wide; 4]; 4]) -> Wide {
-    let mut det = zero();
+fn det4_exact(m: [[Big; 4]; 4]) -> Big {
+    let mut det = Big::ZERO;
     for col in 0..4 {
-        if m[0][col] == zero() {
+        if m[0][col].signum() == Ordering::Equal {
             continue;
         }
         let sub = [
@@ -498,11 +522,7 @@ fn det4_exact(m: [[Wide; 4]; 4]) -> Wide {
             drop_col(m[3], col),
         ];
         let d = m[0][col] * det3_exact(sub);
-        if col % 2 == 0 {
-            det += d;
-        } else {
-            det -= d;
-        }
+        det = if col % 2 == 0 { det + d } else { det - d };
     }
     det
 }
@@ -539,8 +559,7 @@ pub fn meet_side(p: [&Plane; 3], q: &Plane) -> Option<Ordering> {
         Some(s) => s,
         None => {
             let e = exact_rows();
-            let d = det3_exact(e.map(|r| [r[0], r[1], r[2]]));
-            d.cmp(&zero())
+            det3_exact(e.map(|r| [r[0], r[1], r[2]])).signum()
         }
     };
     if d_sign == Ordering::Equal {
@@ -551,7 +570,7 @@ pub fn meet_side(p: [&Plane; 3], q: &Plane) -> Option<Ordering> {
         Some(s) => s,
         None => {
             let e = exact_rows();
-            det4_exact([e[0], e[1], e[2], plane_exact(q)]).cmp(&zero())
+            det4_exact([e[0], e[1], e[2], plane_exact(q)]).signum()
         }
     };
     Some(combine_signs(det_sign, d_sign))
@@ -582,12 +601,12 @@ pub fn line_side(m: [&Line; 2], l: &Line) -> Option<Ordering> {
     count_fallback();
     // Crossing point (x, y) of a0 x + b0 y + d0 = 0 and a1 x + b1 y + d1 = 0:
     // l at it = det3(m0, m1, l) / D with D = a0 b1 - a1 b0.
-    let e = [m[0].exact(), m[1].exact(), l.exact()];
-    let d_sign = (e[0][0] * e[1][1] - e[1][0] * e[0][1]).cmp(&zero());
+    let e = [m[0].exact_big(), m[1].exact_big(), l.exact_big()];
+    let d_sign = (e[0][0] * e[1][1] - e[1][0] * e[0][1]).signum();
     if d_sign == Ordering::Equal {
         return None;
     }
-    Some(combine_signs(det3_exact(e).cmp(&zero()), d_sign))
+    Some(combine_signs(det3_exact(e).signum(), d_sign))
 }
 
 /// [`line_side`] by the f64 filter alone (both determinants): `None` where it cannot decide
@@ -625,12 +644,12 @@ pub fn depth_order_at(m: [&Line; 2], s: &Plane, t: &Plane) -> Option<Ordering> {
     // z) exactly when it lies on t's negative side, since t's equation grows with z (c > 0):
     // the order is the sign of t there, det4(s, m0, m1, t)/D by Cramer's rule.
     let e = [plane_exact(s), m[0].exact_row(), m[1].exact_row()];
-    let d_sign = det3_exact(e.map(|r| [r[0], r[1], r[2]])).cmp(&zero());
+    let d_sign = det3_exact(e.map(|r| [r[0], r[1], r[2]])).signum();
     if d_sign == Ordering::Equal {
         return None;
     }
     let det = det4_exact([e[0], e[1], e[2], plane_exact(t)]);
-    Some(combine_signs(det.cmp(&zero()), d_sign))
+    Some(combine_signs(det.signum(), d_sign))
 }
 
 /// Where two lines cross, in f64 grid coordinates, rounded: for output and bounds, never for a
@@ -754,8 +773,8 @@ pub fn heading(l: &Line, m: &Line) -> Ordering {
         return s;
     }
     count_fallback();
-    let ([a0, b0, _], [a1, b1, _]) = (l.exact(), m.exact());
-    (a1 * b0 - b1 * a0).cmp(&zero())
+    let ([a0, b0, _], [a1, b1, _]) = (l.exact_big(), m.exact_big());
+    (a1 * b0 - b1 * a0).signum()
 }
 
 /// Exact orientation of three grid points' (x, y): `Greater` for counter-clockwise (y up).
@@ -861,6 +880,46 @@ mod tests {
                 assert_eq!(crossing_rounded(l, m), crossing_rounded_wide(l, m));
             }
         }
+    }
+
+    /// The fallbacks' coefficients ([`Line::exact_big`]) are [`Line::exact`]'s, for cuts of
+    /// planes out to the bit budget's extremes (normals below 2^109, offsets below 2^165) and
+    /// for edges at the grid's.
+    #[test]
+    fn fallback_coefficients_are_the_exact_ones() {
+        // A value of at most `bits` bits, either sign.
+        fn signed(next: &mut impl FnMut() -> u64, bits: u32) -> i128 {
+            let v = (((next() as u128) << 64 | next() as u128) >> (128 - bits)) as i128;
+            if next() & 1 == 0 { v } else { -v }
+        }
+        let mut next = xorshift(5);
+        for case in 0..5_000 {
+            // Every fifth case at the largest magnitudes, the others at random sizes.
+            let mut plane = || {
+                let mut bits = |top: u32| {
+                    if case % 5 == 0 {
+                        top
+                    } else {
+                        1 + (next() % top as u64) as u32
+                    }
+                };
+                let (ba, bb, bc, bd) = (bits(109), bits(109), bits(109), bits(37));
+                let d_high: I256 = signed(&mut next, bd).as_();
+                let d_low: I256 = signed(&mut next, 127).abs().as_();
+                Plane {
+                    a: signed(&mut next, ba),
+                    b: signed(&mut next, bb),
+                    c: signed(&mut next, bc).abs().max(1),
+                    d: (d_high << 128u32) + d_low,
+                }
+            };
+            let l = Line::cut(plane(), plane());
+            assert_eq!(l.exact_big().map(Big::to_bnum::<96>), l.exact(), "{l:?}");
+        }
+        let max = super::super::GRID_MAX;
+        let corner = GridPoint::new(max, -max, 0);
+        let l = Line::edge(corner, GridPoint::new(-max, max - 1, 0)).expect("an edge");
+        assert_eq!(l.exact_big().map(Big::to_bnum::<96>), l.exact());
     }
 
     #[test]
