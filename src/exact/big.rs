@@ -80,9 +80,8 @@ impl Big {
         self
     }
 
-    /// The value in `W` bytes (for tests against fixed-width integers; `W` must hold it).
-    #[cfg(test)]
-    pub(crate) fn to_bnum<const W: usize>(self) -> bnum::Int<W> {
+    /// The value as a fixed-width integer of `W` bytes, which must hold it (for division).
+    pub fn to_bnum<const W: usize>(self) -> bnum::Int<W> {
         let mut v: bnum::Int<W> = 0i32.as_();
         for (k, &limb) in self.magnitude().iter().enumerate() {
             v += limb.as_::<bnum::Int<W>>() << (64 * k as u32);

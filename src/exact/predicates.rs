@@ -678,9 +678,19 @@ pub fn crossing_rounded(l: &Line, m: &Line) -> Option<[f64; 2]> {
     crossing_rounded_wide(l, m)
 }
 
-/// [`crossing_rounded`] in the general width.
+/// [`crossing_rounded`] in the general width: Cramer's products in [`Big`]s (the limbs the
+/// coefficients have), the two divisions in 768 bits.
 fn crossing_rounded_wide(l: &Line, m: &Line) -> Option<[f64; 2]> {
-    cramer_rounded(l.exact(), m.exact())
+    let ([a0, b0, d0], [a1, b1, d1]) = (l.exact_big(), m.exact_big());
+    let den = a0 * b1 - a1 * b0;
+    let wide = |v: Big| v.to_bnum::<96>();
+    (den.signum() != Ordering::Equal).then(|| {
+        let den = wide(den);
+        [
+            ratio_f64(wide(b0 * d1 - b1 * d0), den),
+            ratio_f64(wide(a1 * d0 - a0 * d1), den),
+        ]
+    })
 }
 
 /// Cramer's rule for two lines' exact (a, b, d) in `N` bytes, each coordinate correctly rounded
@@ -884,7 +894,7 @@ mod tests {
 
     /// The fallbacks' coefficients ([`Line::exact_big`]) are [`Line::exact`]'s, for cuts of
     /// planes out to the bit budget's extremes (normals below 2^109, offsets below 2^165) and
-    /// for edges at the grid's.
+    /// for edges at the grid's; cuts cross where 768-bit integers say.
     #[test]
     fn fallback_coefficients_are_the_exact_ones() {
         // A value of at most `bits` bits, either sign.
@@ -893,6 +903,7 @@ mod tests {
             if next() & 1 == 0 { v } else { -v }
         }
         let mut next = xorshift(5);
+        let (mut previous, mut crossed) = (None::<Line>, 0);
         for case in 0..5_000 {
             // Every fifth case at the largest magnitudes, the others at random sizes.
             let mut plane = || {
@@ -915,7 +926,15 @@ mod tests {
             };
             let l = Line::cut(plane(), plane());
             assert_eq!(l.exact_big().map(Big::to_bnum::<96>), l.exact(), "{l:?}");
+            // Crossings of cuts from their products in limbs, as in 768 bits throughout.
+            if let Some(m) = &previous {
+                let in_768_bits = cramer_rounded(l.exact(), m.exact());
+                assert_eq!(crossing_rounded_wide(&l, m), in_768_bits, "{l:?} {m:?}");
+                crossed += in_768_bits.is_some() as usize;
+            }
+            previous = Some(l);
         }
+        assert!(crossed > 4_900, "{crossed}");
         let max = super::super::GRID_MAX;
         let corner = GridPoint::new(max, -max, 0);
         let l = Line::edge(corner, GridPoint::new(-max, max - 1, 0)).expect("an edge");
