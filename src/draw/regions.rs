@@ -35,8 +35,7 @@ use crate::exact::predicates::crossing_rounded;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
-use crate::visibility::coverage::bounds;
-use crate::visibility::grid::for_each_near;
+use crate::visibility::grid::for_each_near_edges;
 use glam::DVec3;
 use rustc_hash::FxHashMap;
 use std::cmp::Ordering;
@@ -495,9 +494,10 @@ impl Group<'_> {
             vertex: k % pieces[members[i]].len(),
         };
         let mut edges = Vec::new();
-        let boxes: Vec<[f64; 4]> = members.iter().map(|&m| bounds(&pieces[m])).collect();
-        for_each_near(&boxes, open, |i, near| {
-            for k in (0..pieces[members[i]].len()).filter(|&k| !whole[first[i] + k]) {
+        let pixels = |i: usize| self.vertices.pixels[members[i]].as_slice();
+        let open_edge = |i: usize, k: usize| !whole[first[i] + k];
+        for_each_near_edges(members.len(), pixels, open, open_edge, |i, near| {
+            for k in (0..pieces[members[i]].len()).filter(|&k| open_edge(i, k)) {
                 let mut points = self.inside_edge(i, k, near);
                 points.push(at(i, k + 1));
                 let mut from = at(i, k);

@@ -14,8 +14,7 @@
 
 use super::regions::{UnionFind, Vertices};
 use crate::exact::polygon::Piece;
-use crate::visibility::coverage::bounds;
-use crate::visibility::grid::for_each_near;
+use crate::visibility::grid::for_each_near_edges;
 use rustc_hash::FxHashMap;
 use std::cmp::Ordering;
 
@@ -83,10 +82,31 @@ pub fn shared_edges(
             }
         }
     }
+    // Two collinear segments sharing a part have an end of one on the other: the pairs of
+    // pieces where one has a vertex on an edge of the other not shared whole, both ways.
     let open = |a: usize| whole[a].iter().any(|w| !w);
-    let boxes: Vec<[f64; 4]> = pieces.iter().map(bounds).collect();
-    for_each_near(&boxes, open, |a, near| {
-        for &b in near.iter().filter(|&&b| b > a && group(b) != group(a)) {
+    // Per piece: the later pieces it is paired with.
+    let mut later: Vec<Vec<u32>> = vec![Vec::new(); pieces.len()];
+    let points = |a: usize| pixels[a].as_slice();
+    for_each_near_edges(
+        pieces.len(),
+        points,
+        open,
+        |a, k| !whole[a][k],
+        |a, near| {
+            for &b in near {
+                let (first, second) = if a < b { (a, b) } else { (b, a) };
+                later[first].push(second as u32);
+            }
+        },
+    );
+    for (a, partners) in later.iter_mut().enumerate() {
+        partners.sort_unstable();
+        partners.dedup();
+        for b in partners.iter().map(|&b| b as usize) {
+            if group(b) == group(a) {
+                continue;
+            }
             for k in (0..pieces[a].len()).filter(|&k| !whole[a][k]) {
                 let (pa, pb) = ((a, &pieces[a]), (b, &pieces[b]));
                 if let Some(ends) = shared_part(pa, k, pb, &whole[b]) {
@@ -101,7 +121,7 @@ pub fn shared_edges(
                 }
             }
         }
-    });
+    }
     out
 }
 

@@ -88,6 +88,50 @@ impl BoxGrid {
         }
     }
 
+    /// How many cells box `b` covers.
+    pub fn cells_of(&self, b: &[f64; 4]) -> usize {
+        let (i0, i1, j0, j1) = self.range(b);
+        (i1 - i0 + 1) * (j1 - j0 + 1)
+    }
+
+    /// Calls `f(entry, step)` with every entry listed in a cell within `margin` of the segment
+    /// `p`–`q` (an entry may come more than once), and the box of the step it was found for:
+    /// the segment is walked in steps about a cell long, each step's box widened by `margin`.
+    /// The steps' boxes cover every point within `margin` of the segment less the steps' own
+    /// rounding (a few ulps of the coordinates): consecutive steps share their computed ends.
+    /// A cell is found from a point by the same monotone arithmetic as from a box.
+    pub fn visit_segment(
+        &self,
+        p: [f64; 2],
+        q: [f64; 2],
+        margin: f64,
+        mut f: impl FnMut(u32, &[f64; 4]),
+    ) {
+        let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+        // At most 512 cells a side: at most about a thousand steps.
+        let steps = ((dx.abs() / self.cell[0])
+            .max(dy.abs() / self.cell[1])
+            .ceil() as usize)
+            .clamp(1, 2 * self.cells + 1);
+        let mut from = p;
+        for s in 1..=steps {
+            let to = if s == steps {
+                q
+            } else {
+                let t = s as f64 / steps as f64;
+                [p[0] + t * dx, p[1] + t * dy]
+            };
+            let b = [
+                from[0].min(to[0]) - margin,
+                from[1].min(to[1]) - margin,
+                from[0].max(to[0]) + margin,
+                from[1].max(to[1]) + margin,
+            ];
+            self.visit_all(&b, |e| f(e, &b));
+            from = to;
+        }
+    }
+
     /// Calls `f` with every entry listed in a cell that `b` covers (an entry may come more than
     /// once), first dropping from those cells the entries `keep` rejects.
     pub fn visit(&mut self, b: &[f64; 4], keep: impl Fn(u32) -> bool, mut f: impl FnMut(u32)) {
@@ -120,67 +164,147 @@ pub(crate) fn sweep_overlapping(boxes: &[[i64; 4]], mut pair: impl FnMut(usize, 
     }
 }
 
-/// For every box `a` that `wanted(a)` selects, in order, calls `f(a, near)` with the other
-/// selected boxes whose closed extents meet box `a`'s, ascending: the candidate neighbours of
-/// `a` (a filter: the caller decides exactly). Only the selected boxes enter the grid (the open
-/// pieces of a drawing are a few of its pieces).
-pub(crate) fn for_each_near(
-    boxes: &[[f64; 4]],
+/// How far, relative to `1 +` the largest coordinate, [`for_each_edge_near`] looks beyond an
+/// edge: far above the errors it must cover. Vertices are exact points correctly rounded to
+/// f64 and mapped to pixels (a few ulps, 2^-51 relative at most), and the walk's points along
+/// an edge err by a few ulps of the largest coordinate; 2^-30 is a million times more.
+pub(crate) const EDGE_MARGIN: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// For every item `a` that `wanted(a)` selects, in order, calls `f(a, near)` with the other
+/// selected items one of whose points may lie on an edge of `a` that `open_edge(a, k)`
+/// selects (edge k runs from point k to point k + 1 of `points(a)`, cyclically), ascending: a
+/// filter (the caller decides exactly), complete for points on those closed segments (within
+/// [`EDGE_MARGIN`] of them).
+///
+/// The points of the selected items are listed in a grid of cells. An item whose points lie
+/// within a few cells looks in the cells of its box; a larger one walks the cells along each
+/// of its open edges: a long thin piece (a sliver) meets the few cells its edges cross, not
+/// every cell of its box.
+pub(crate) fn for_each_near_edges<'p>(
+    count: usize,
+    points: impl Fn(usize) -> &'p [[f64; 2]],
     wanted: impl Fn(usize) -> bool,
+    open_edge: impl Fn(usize, usize) -> bool,
     mut f: impl FnMut(usize, &[usize]),
 ) {
-    let chosen: Vec<usize> = (0..boxes.len()).filter(|&a| wanted(a)).collect();
-    let chosen_boxes: Vec<[f64; 4]> = chosen.iter().map(|&a| boxes[a]).collect();
-    let mut near = NearBoxes::of(&chosen_boxes);
-    let mut found = Vec::new();
-    for (k, &a) in chosen.iter().enumerate() {
-        found.clear();
-        found.extend(near.of_box(k).iter().map(|&j| chosen[j]));
-        f(a, &found);
-    }
-}
-
-/// The boxes near each box of a list, asked for one box at a time ([`for_each_near`] asks for
-/// all of them in order).
-pub(crate) struct NearBoxes<'b> {
-    boxes: &'b [[f64; 4]],
-    grid: BoxGrid,
-    near: Vec<usize>,
-    /// The last box whose neighbours listed each box (each listed once).
-    seen: Vec<usize>,
-}
-
-impl<'b> NearBoxes<'b> {
-    /// Over `boxes`.
-    pub fn of(boxes: &'b [[f64; 4]]) -> NearBoxes<'b> {
-        NearBoxes {
-            boxes,
-            grid: BoxGrid::holding(boxes),
-            near: Vec::new(),
-            seen: vec![usize::MAX; boxes.len()],
+    let chosen: Vec<usize> = (0..count).filter(|&a| wanted(a)).collect();
+    let boxes: Vec<[f64; 4]> = chosen.iter().map(|&a| box_of(points(a))).collect();
+    // About one cell per item, as for boxes; an entry is a point, by its place in `at`.
+    let mut grid = BoxGrid::over(&boxes, chosen.len());
+    let mut at: Vec<([f64; 2], u32)> = Vec::new();
+    let mut largest = 0.0f64;
+    for (c, &a) in chosen.iter().enumerate() {
+        for p in points(a) {
+            grid.insert(at.len() as u32, &[p[0], p[1], p[0], p[1]]);
+            at.push((*p, c as u32));
+            largest = largest.max(p[0].abs()).max(p[1].abs());
         }
     }
-
-    /// The other boxes whose closed extents meet box `a`'s, ascending.
-    pub fn of_box(&mut self, a: usize) -> &[usize] {
-        let (boxes, near, seen) = (self.boxes, &mut self.near, &mut self.seen);
-        let ba = &boxes[a];
+    let margin = EDGE_MARGIN * (1.0 + largest);
+    let widen = |b: &[f64; 4]| [b[0] - margin, b[1] - margin, b[2] + margin, b[3] + margin];
+    // The last item whose neighbours listed each item (each listed once).
+    let mut seen = vec![usize::MAX; chosen.len()];
+    let mut near = Vec::new();
+    for (c, &a) in chosen.iter().enumerate() {
         near.clear();
-        self.grid.visit_all(ba, |b| {
-            let b = b as usize;
-            let bb = &boxes[b];
-            if b != a
-                && seen[b] != a
-                && ba[0] <= bb[2]
-                && bb[0] <= ba[2]
-                && ba[1] <= bb[3]
-                && bb[1] <= ba[3]
+        // The owner of entry `e` if its point lies in box `b`.
+        let mut list = |e: u32, b: &[f64; 4]| {
+            let (p, d) = at[e as usize];
+            let d = d as usize;
+            if d != c
+                && seen[d] != c
+                && b[0] <= p[0]
+                && p[0] <= b[2]
+                && b[1] <= p[1]
+                && p[1] <= b[3]
             {
-                seen[b] = a;
-                near.push(b);
+                seen[d] = c;
+                near.push(chosen[d]);
             }
-        });
+        };
+        let (ps, b) = (points(a), widen(&boxes[c]));
+        if grid.cells_of(&b) <= SMALL_BOX_CELLS {
+            grid.visit_all(&b, |e| list(e, &b));
+        } else {
+            for k in (0..ps.len()).filter(|&k| open_edge(a, k)) {
+                grid.visit_segment(ps[k], ps[(k + 1) % ps.len()], margin, &mut list);
+            }
+        }
         near.sort_unstable();
-        near
+        f(a, &near);
+    }
+}
+
+/// Up to this many cells, an item's box is searched whole rather than along its edges (the
+/// edges of a small item cross most of its cells anyway).
+const SMALL_BOX_CELLS: usize = 4;
+
+/// The box of `points` (x0, y0, x1, y1).
+fn box_of(points: &[[f64; 2]]) -> [f64; 4] {
+    points.iter().fold(
+        [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ],
+        |b, p| {
+            [
+                b[0].min(p[0]),
+                b[1].min(p[1]),
+                b[2].max(p[0]),
+                b[3].max(p[1]),
+            ]
+        },
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// Every item with a point on an edge of another (computed along it in f64, so within a
+        /// few ulps) is near that one, however long and thin the edge and however fine the
+        /// grid; items whose points are all far from it are not.
+        #[test]
+        fn points_on_an_edge_are_near_it(
+            ends in prop::collection::vec((-1e4f64..1e4, -1e4f64..1e4), 2..40),
+            on in prop::collection::vec((0usize..40, 0.0f64..=1.0), 1..60),
+        ) {
+            // Item 0: a polygon through the ends (its edges long and thin); items 1..: a point
+            // on one of its edges each, or far off the whole drawing.
+            let polygon: Vec<[f64; 2]> = ends.iter().map(|&(x, y)| [x, y]).collect();
+            let n = polygon.len();
+            let mut items = vec![polygon.clone()];
+            let mut expected: Vec<Vec<usize>> = vec![Vec::new(); n];
+            for (j, &(k, t)) in on.iter().enumerate() {
+                let k = k % n;
+                let (p, q) = (polygon[k], polygon[(k + 1) % n]);
+                if j % 5 == 4 {
+                    items.push(vec![[3e4 + j as f64, 3e4]]);
+                } else {
+                    items.push(vec![[p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]]);
+                    expected[k].push(items.len() - 1);
+                }
+            }
+            let mut met: Vec<(usize, Vec<usize>)> = Vec::new();
+            let points = |a: usize| items[a].as_slice();
+            for_each_near_edges(items.len(), points, |_| true, |a, _| a == 0, |a, near| {
+                met.push((a, near.to_vec()));
+            });
+            // Item 0 meets every point on its edges.
+            prop_assert_eq!(&met[0].0, &0);
+            for e in expected.iter().flatten() {
+                prop_assert!(met[0].1.contains(e), "item {} missed", e);
+            }
+            for &d in &met[0].1 {
+                prop_assert!(items[d][0][0] < 2e4, "a far item {} is near", d);
+            }
+            prop_assert_eq!(met.len(), items.len());
+        }
     }
 }
