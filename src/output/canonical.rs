@@ -35,6 +35,7 @@
 //! difference); that order is now the defined one.
 
 use super::drawing::{DrawItem, Drawing, SeamStroke};
+use crate::visibility::grid::box_of;
 use geo::coordinate_position::{CoordPos, coord_pos_relative_to_ring};
 use geo::{Coord, LineString};
 use std::cmp::Ordering;
@@ -216,7 +217,7 @@ fn holders(rings: &[Vec<[f64; 2]>]) -> Vec<Vec<usize>> {
     if rings.len() < 2 {
         return vec![Vec::new(); rings.len()];
     }
-    let boxes: Vec<[f64; 4]> = rings.iter().map(|r| bbox(r)).collect();
+    let boxes: Vec<[f64; 4]> = rings.iter().map(|r| box_of(r)).collect();
     let mut closed: Vec<Option<LineString<f64>>> = vec![None; rings.len()];
     (0..rings.len())
         .map(|i| {
@@ -260,26 +261,6 @@ fn closed_ring(ring: &[[f64; 2]]) -> LineString<f64> {
         coords.push(first);
     }
     LineString(coords)
-}
-
-/// [min x, min y, max x, max y] of a ring.
-fn bbox(ring: &[[f64; 2]]) -> [f64; 4] {
-    ring.iter().fold(
-        [
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ],
-        |b, p| {
-            [
-                b[0].min(p[0]),
-                b[1].min(p[1]),
-                b[2].max(p[0]),
-                b[3].max(p[1]),
-            ]
-        },
-    )
 }
 
 /// Points by y, then x (top to bottom, then left to right on screen).

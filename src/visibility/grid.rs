@@ -239,8 +239,8 @@ pub(crate) fn for_each_near_edges<'p>(
 /// edges of a small item cross most of its cells anyway).
 const SMALL_BOX_CELLS: usize = 4;
 
-/// The box of `points` (x0, y0, x1, y1).
-fn box_of(points: &[[f64; 2]]) -> [f64; 4] {
+/// The box of `points` (x0, y0, x1, y1): [min x, min y, max x, max y].
+pub(crate) fn box_of(points: &[[f64; 2]]) -> [f64; 4] {
     points.iter().fold(
         [
             f64::INFINITY,
