@@ -39,7 +39,7 @@
 use super::big::Big;
 use super::{GridPoint, Plane, U, i128_to_f64, i256_to_f64, w256};
 use bnum::cast::As;
-use bnum::types::{I256, I512};
+use bnum::types::I512;
 use std::cell::Cell;
 use std::cmp::Ordering;
 use std::sync::Arc;
@@ -375,26 +375,14 @@ impl Line {
         }
     }
 
-    /// Exact coefficients (a, b, d).
+    /// Exact coefficients (a, b, d), in the fixed width of callers that divide or compare
+    /// ratios ([`Self::exact_big`]'s values).
     pub fn exact(&self) -> [Wide; 3] {
-        match self {
-            Line::Edge(_) | Line::Vertical(_) => self
-                .vertical_coefficients()
-                .expect("a vertical line")
-                .map(wide),
-            Line::Cut(p, q) => {
-                let (pc, qc) = (wide(p.c), wide(q.c));
-                [
-                    qc * wide(p.a) - pc * wide(q.a),
-                    qc * wide(p.b) - pc * wide(q.b),
-                    qc * wide_256(p.d) - pc * wide_256(q.d),
-                ]
-            }
-        }
+        self.exact_big().map(Big::to_bnum::<96>)
     }
 
-    /// [`Self::exact`] as [`Big`]s, the fallbacks' integers: products cost the limbs the
-    /// coefficients have (an edge's two, a cut's four or five), not the full width.
+    /// Exact coefficients (a, b, d) as [`Big`]s, the fallbacks' integers: products cost the
+    /// limbs the coefficients have (an edge's two, a cut's four or five), not the full width.
     fn exact_big(&self) -> [Big; 3] {
         match self {
             Line::Edge(_) | Line::Vertical(_) => self
@@ -430,14 +418,6 @@ fn entry(v: f64) -> Entry {
         value: v,
         magnitude: v.abs(),
     }
-}
-
-fn wide(v: i128) -> Wide {
-    v.as_()
-}
-
-fn wide_256(v: I256) -> Wide {
-    v.as_()
 }
 
 fn plane_filtered(p: &Plane) -> [Entry; 4] {
@@ -834,6 +814,7 @@ pub fn segments_cross(p0: GridPoint, p1: GridPoint, q0: GridPoint, q1: GridPoint
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bnum::types::I256;
 
     /// A small deterministic generator (xorshift64) for the tests' random values.
     fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
@@ -892,8 +873,8 @@ mod tests {
         }
     }
 
-    /// The fallbacks' coefficients ([`Line::exact_big`]) are [`Line::exact`]'s, for cuts of
-    /// planes out to the bit budget's extremes (normals below 2^109, offsets below 2^165) and
+    /// The fallbacks' coefficients ([`Line::exact_big`]) are those computed in 768 bits
+    /// throughout, for cuts of planes out to the bit budget's extremes (normals below 2^109, offsets below 2^165) and
     /// for edges at the grid's; cuts cross where 768-bit integers say.
     #[test]
     fn fallback_coefficients_are_the_exact_ones() {
@@ -924,8 +905,17 @@ mod tests {
                     d: (d_high << 128u32) + d_low,
                 }
             };
-            let l = Line::cut(plane(), plane());
-            assert_eq!(l.exact_big().map(Big::to_bnum::<96>), l.exact(), "{l:?}");
+            let (p, q) = (plane(), plane());
+            // The cut's coefficients c_Q·P - c_P·Q, computed here in 768 bits throughout.
+            let w = |v: i128| -> Wide { v.as_() };
+            let w256 = |v: I256| -> Wide { v.as_() };
+            let in_768_bits = [
+                w(q.c) * w(p.a) - w(p.c) * w(q.a),
+                w(q.c) * w(p.b) - w(p.c) * w(q.b),
+                w(q.c) * w256(p.d) - w(p.c) * w256(q.d),
+            ];
+            let l = Line::cut(p, q);
+            assert_eq!(l.exact_big().map(Big::to_bnum::<96>), in_768_bits, "{l:?}");
             // Crossings of cuts from their products in limbs, as in 768 bits throughout.
             if let Some(m) = &previous {
                 let in_768_bits = cramer_rounded(l.exact(), m.exact());
@@ -937,8 +927,11 @@ mod tests {
         assert!(crossed > 4_900, "{crossed}");
         let max = super::super::GRID_MAX;
         let corner = GridPoint::new(max, -max, 0);
-        let l = Line::edge(corner, GridPoint::new(-max, max - 1, 0)).expect("an edge");
-        assert_eq!(l.exact_big().map(Big::to_bnum::<96>), l.exact());
+        let far = GridPoint::new(-max, max - 1, 0);
+        let l = Line::edge(corner, far).expect("an edge");
+        let edge = Plane::edge(corner, far).expect("an edge");
+        let in_768_bits: [Wide; 3] = [edge.a.as_(), edge.b.as_(), edge.d.as_()];
+        assert_eq!(l.exact_big().map(Big::to_bnum::<96>), in_768_bits);
     }
 
     #[test]

@@ -164,7 +164,7 @@ pub(crate) fn sweep_overlapping(boxes: &[[i64; 4]], mut pair: impl FnMut(usize, 
     }
 }
 
-/// How far, relative to `1 +` the largest coordinate, [`for_each_edge_near`] looks beyond an
+/// How far, relative to `1 +` the largest coordinate, [`for_each_near_edges`] looks beyond an
 /// edge: far above the errors it must cover. Vertices are exact points correctly rounded to
 /// f64 and mapped to pixels (a few ulps, 2^-51 relative at most), and the walk's points along
 /// an edge err by a few ulps of the largest coordinate; 2^-30 is a million times more.
