@@ -292,10 +292,12 @@ impl Bsp {
         Bsp { nodes, stats }
     }
 
-    /// Visits every piece front to back.
-    pub fn front_to_back(&self, mut visit: impl FnMut(&Piece)) {
+    /// The nodes in walk order: the fragments of node `order[0]`, then `order[1]`'s, ... are
+    /// every fragment front to back.
+    fn walk_order(&self) -> Vec<u32> {
+        let mut order = Vec::with_capacity(self.nodes.len());
         if self.nodes.is_empty() {
-            return;
+            return order;
         }
         // Explicit stack: a node is expanded into (neg subtree, own pieces, pos subtree).
         enum Step {
@@ -305,7 +307,7 @@ impl Bsp {
         let mut stack = vec![Step::Node(0)];
         while let Some(step) = stack.pop() {
             match step {
-                Step::Own(n) => self.nodes[n as usize].on.iter().for_each(&mut visit),
+                Step::Own(n) => order.push(n),
                 Step::Node(n) => {
                     let node = &self.nodes[n as usize];
                     if let Some(p) = node.pos {
@@ -318,6 +320,24 @@ impl Bsp {
                 }
             }
         }
+        order
+    }
+
+    /// Visits every piece front to back.
+    pub fn front_to_back(&self, mut visit: impl FnMut(&Piece)) {
+        for n in self.walk_order() {
+            self.nodes[n as usize].on.iter().for_each(&mut visit);
+        }
+    }
+
+    /// Every piece front to back, moved out of the tree: each node's pieces are freed as they
+    /// move, so the tree and the list are never both whole in memory.
+    pub fn into_front_to_back(mut self) -> Vec<Piece> {
+        let mut all = Vec::with_capacity(self.stats.fragments);
+        for n in self.walk_order() {
+            all.append(&mut std::mem::take(&mut self.nodes[n as usize].on));
+        }
+        all
     }
 
     /// Every piece back to front: painter order, for translucent output.
@@ -329,10 +349,9 @@ impl Bsp {
     }
 
     /// The coverage map of every piece, inserted front to back: each minus the visible pieces
-    /// in front ([`Coverage::insert_behind`]).
-    pub fn coverage<'a>(&self, screen: &'a ScreenScene) -> Coverage<'a> {
-        let mut order = Vec::with_capacity(self.stats.fragments);
-        self.front_to_back(|p| order.push(p.clone()));
+    /// in front ([`Coverage::insert_behind`]). Consumes the tree (its pieces move into the map).
+    pub fn into_coverage(self, screen: &ScreenScene) -> Coverage<'_> {
+        let order = self.into_front_to_back();
         let mut coverage = Coverage::new(screen, &order);
         for p in order {
             coverage.insert_behind(p);
@@ -341,10 +360,11 @@ impl Bsp {
     }
 
     /// The exact visible set: pieces front to back, each minus the visible pieces in front.
-    pub fn visible_set(&mut self, screen: &ScreenScene) -> VisibleSet {
-        let pieces = self.coverage(screen).into_pieces();
-        self.stats.visible_pieces = pieces.len();
-        VisibleSet::of_pieces(pieces)
+    pub fn visible_set(self, screen: &ScreenScene) -> (VisibleSet, BspStats) {
+        let mut stats = self.stats.clone();
+        let pieces = self.into_coverage(screen).into_pieces();
+        stats.visible_pieces = pieces.len();
+        (VisibleSet::of_pieces(pieces), stats)
     }
 }
 
@@ -359,13 +379,16 @@ pub fn translucent_layer(
     report: Option<Report>,
 ) -> (Vec<Fragment>, BspStats) {
     let bsp = Bsp::build_from(screen, see_through, report);
+    let stats = bsp.stats.clone();
+    let mut back_to_front = bsp.into_front_to_back();
+    back_to_front.reverse();
     let mut parts = Vec::new();
-    for f in bsp.back_to_front() {
+    for f in back_to_front {
         opaque.unhidden_parts(f, &mut parts);
     }
     let layer = parts
         .into_iter()
         .map(|p| Fragment::Piece(Box::new(p)))
         .collect();
-    (layer, bsp.stats)
+    (layer, stats)
 }

@@ -40,7 +40,7 @@ impl Strategy for BspTree {
         let (visible, st) = solve_strips(strips.cut(opaque), report, |strip, report| {
             let bsp = Bsp::build_from(screen, strip, report);
             let mut st = bsp.stats.clone();
-            let visible = bsp.coverage(screen).into_pieces();
+            let visible = bsp.into_coverage(screen).into_pieces();
             st.visible_pieces = visible.len();
             Some((visible, st))
         })

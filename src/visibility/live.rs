@@ -97,6 +97,10 @@ impl Live {
 
     /// The live pieces, ascending by index.
     pub fn into_pieces(self) -> Vec<Piece> {
-        self.pieces.into_iter().flatten().collect()
+        // Sized first: collecting through `flatten` grows by doubling (up to twice the room).
+        let live = self.pieces.iter().filter(|p| p.is_some()).count();
+        let mut out = Vec::with_capacity(live);
+        out.extend(self.pieces.into_iter().flatten());
+        out
     }
 }

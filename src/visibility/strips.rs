@@ -220,12 +220,13 @@ pub(crate) fn solve_strips<C: Counters>(
     }
     let fallbacks: u64 = solved.iter().map(|s| s.1).sum();
     add_fallbacks(fallbacks.saturating_sub(own));
-    // One allocation of the final size: growing by doubling would copy the pieces again.
-    let total = solved.iter().flat_map(|s| &s.0).map(|(p, _)| p.len()).sum();
-    let mut pieces = Vec::with_capacity(total);
+    // The list grows by exactly each strip, which is freed once moved: the strips and the whole
+    // list are never both in memory (a large list grows in place, by remapping its pages).
+    let mut pieces = Vec::new();
     let mut counters = C::default();
     for (strip, _) in solved {
         let (p, c) = strip?;
+        pieces.reserve_exact(p.len());
         pieces.extend(p);
         counters.add(&c);
     }

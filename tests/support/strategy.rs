@@ -25,9 +25,7 @@ pub fn coverage_map(screen: &ScreenScene) -> (VisibleSet, CoverageStats) {
 /// The other exact path: the BSP built, then walked front to back through the ordered coverage
 /// map; with the tree's counters.
 pub fn bsp_walk(screen: &ScreenScene) -> (VisibleSet, BspStats) {
-    let mut bsp = Bsp::build(screen);
-    let visible = bsp.visible_set(screen);
-    (visible, bsp.stats)
+    Bsp::build(screen).visible_set(screen)
 }
 
 /// Every fragment of the BSP, back to front (the painter order of translucent parts).
