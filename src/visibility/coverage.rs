@@ -257,8 +257,9 @@ impl<'a> Coverage<'a> {
     }
 }
 
-/// Resolves an overlapping pair: pushes what `part` keeps to `kept` and returns what the
-/// visible piece `front` keeps, or `None` when it keeps everything. Counts plane splits.
+/// Resolves an overlapping pair (interiors meeting: [`separated`] said no): pushes what `part`
+/// keeps to `kept` and returns what the visible piece `front` keeps, or `None` when it keeps
+/// everything. Counts plane splits.
 fn resolve(
     screen: &ScreenScene,
     part: Piece,
@@ -270,23 +271,23 @@ fn resolve(
     // `front`'s plane is nearer than `front`.
     match part.split_by_plane(&front.support, front.poly) {
         Split::Positive => {
-            subtract(part, front, kept);
+            subtract_overlapping(part, front, kept);
             None
         }
         Split::Negative => {
             let mut front_keeps = Vec::new();
-            subtract(front.clone(), &part, &mut front_keeps);
+            subtract_overlapping(front.clone(), &part, &mut front_keeps);
             kept.push(part);
             Some(front_keeps)
         }
         Split::On => {
             if tie_key(screen, &part) < tie_key(screen, front) {
                 let mut front_keeps = Vec::new();
-                subtract(front.clone(), &part, &mut front_keeps);
+                subtract_overlapping(front.clone(), &part, &mut front_keeps);
                 kept.push(part);
                 Some(front_keeps)
             } else {
-                subtract(part, front, kept);
+                subtract_overlapping(part, front, kept);
                 None
             }
         }
@@ -375,6 +376,27 @@ pub(crate) fn clip(piece: Piece, front: &Piece, outside: &mut Vec<Piece>) -> Opt
         outside.push(piece);
         return None;
     }
+    clip_overlapping(piece, front, outside)
+}
+
+/// [`subtract`] of a piece whose interior is known to meet `front`'s ([`separated`] said no):
+/// the same parts, without the test again.
+pub(crate) fn subtract_overlapping(piece: Piece, front: &Piece, out: &mut Vec<Piece>) {
+    clip_overlapping(piece, front, out);
+}
+
+/// [`clip`] of a piece whose interior is known to meet `front`'s ([`separated`] said no): the
+/// same parts, without the test again. (A piece that does not meet `front` must go through
+/// [`clip`]: `front`'s lines would cut it for nothing where only its own sides separate them.)
+pub(crate) fn clip_overlapping(
+    piece: Piece,
+    front: &Piece,
+    outside: &mut Vec<Piece>,
+) -> Option<Piece> {
+    debug_assert!(
+        !separated(&piece, front),
+        "clip_overlapping of pieces apart"
+    );
     let mut inside = piece;
     for ((line, approx), origin) in front.lines_with_approx().zip(front.boundaries()) {
         match inside.split_by_line_with(line, approx, origin) {

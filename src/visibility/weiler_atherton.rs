@@ -24,7 +24,7 @@
 //! of one no polygon is nearer. Translucent faces are layered over the result as the coverage map
 //! layers them ([`super::bsp::translucent_layer`]).
 
-use super::coverage::{clip, split_by_depth};
+use super::coverage::{clip_overlapping, split_by_depth};
 use super::live::{Live, bounds};
 use super::strips::Counters;
 use super::visible_set::{VisibleSet, put_counts};
@@ -350,7 +350,7 @@ fn resolve(
                 st.clipped += 1;
                 let r = chains.rank[v as usize];
                 debug_assert!(r > c, "a clip polygon's own pieces were taken");
-                let inside = clip(p, c_piece, &mut outside);
+                let inside = clip_overlapping(p, c_piece, &mut outside);
                 for o in outside.drain(..) {
                     let b = bounds(&o);
                     chains.push(r, list.add(o, b));
