@@ -168,10 +168,86 @@ pub fn outline(pieces: &[Piece], vertices: &Vertices) -> Vec<Vec<[f64; 2]>> {
 pub struct Vertices {
     /// Per piece, per vertex: pixel coordinates (column, row; y down), the same bits wherever
     /// pieces share the exact point.
-    pub pixels: Vec<Vec<[f64; 2]>>,
+    pub pixels: PerVertex<[f64; 2]>,
     /// Per piece, per vertex: the id of its exact point; two vertices have the same id if and
     /// only if they are the same point (decided exactly).
-    pub ids: Vec<Vec<u32>>,
+    pub ids: PerVertex<u32>,
+}
+
+/// One value per vertex of a list of pieces, in one flat list (no allocation per piece: a
+/// drawing of a million pieces would make a million small lists): `self[a]` is piece a's, in
+/// vertex order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PerVertex<T> {
+    values: Vec<T>,
+    /// Piece a's values are `values[start[a]..start[a + 1]]`; `start[0] == 0`.
+    start: Vec<usize>,
+}
+
+impl<T> Default for PerVertex<T> {
+    fn default() -> Self {
+        PerVertex {
+            values: Vec::new(),
+            start: vec![0],
+        }
+    }
+}
+
+impl<T> PerVertex<T> {
+    /// An empty list with room for `pieces` pieces of `vertices` vertices in all.
+    pub fn with_capacity(pieces: usize, vertices: usize) -> Self {
+        let mut start = Vec::with_capacity(pieces + 1);
+        start.push(0);
+        PerVertex {
+            values: Vec::with_capacity(vertices),
+            start,
+        }
+    }
+
+    /// Appends piece `a = self.len()`'s values.
+    pub fn push_piece(&mut self, values: impl IntoIterator<Item = T>) {
+        self.values.extend(values);
+        self.start.push(self.values.len());
+    }
+
+    /// The number of pieces.
+    pub fn len(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    /// No pieces?
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The number of vertices of all pieces.
+    pub fn vertex_count(&self) -> usize {
+        self.values.len()
+    }
+
+    /// Where piece a's values start in the flat list: vertex k of piece a is number
+    /// `first(a) + k` of all, for the callers' own flat per-vertex lists.
+    pub fn first(&self, a: usize) -> usize {
+        self.start[a]
+    }
+
+    /// The piece whose values include number `index` of the flat list.
+    pub fn piece_of(&self, index: usize) -> usize {
+        self.start.partition_point(|&s| s <= index) - 1
+    }
+
+    /// Every piece's values, in piece order.
+    pub fn iter(&self) -> impl Iterator<Item = &[T]> {
+        self.start.windows(2).map(|w| &self.values[w[0]..w[1]])
+    }
+}
+
+impl<T> std::ops::Index<usize> for PerVertex<T> {
+    type Output = [T];
+
+    fn index(&self, a: usize) -> &[T] {
+        &self.values[self.start[a]..self.start[a + 1]]
+    }
 }
 
 /// Every piece's vertices named and rounded once (see [`Vertices`]): each exact point, the
@@ -187,13 +263,18 @@ pub struct Vertices {
 pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
     let mut at_grid_point: FxHashMap<[i64; 2], ([f64; 2], u32)> = FxHashMap::default();
     let mut near = NearVertices::default();
+    let vertex_count = pieces.iter().map(Piece::len).sum();
     let mut out = Vertices {
-        pixels: Vec::with_capacity(pieces.len()),
-        ids: Vec::with_capacity(pieces.len()),
+        pixels: PerVertex::with_capacity(pieces.len(), vertex_count),
+        ids: PerVertex::with_capacity(pieces.len(), vertex_count),
     };
     let mut next = 0u32;
+    // One piece's named vertices (reused: the piece is pushed whole once named, since
+    // `near.find` reads only the pieces before it).
+    let (mut pixels, mut ids) = (Vec::new(), Vec::new());
     for (a, pa) in pieces.iter().enumerate() {
-        let (mut pixels, mut ids) = (Vec::with_capacity(pa.len()), Vec::with_capacity(pa.len()));
+        pixels.clear();
+        ids.clear();
         for k in 0..pa.len() {
             let (known, grid_point) = match pa.corner(k) {
                 Some(g) => (at_grid_point.get(&g).copied(), Some(g)),
@@ -226,8 +307,8 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
         for k in 0..pa.len() {
             near.insert(pa.point(k), a, k);
         }
-        out.pixels.push(pixels);
-        out.ids.push(ids);
+        out.pixels.push_piece(pixels.iter().copied());
+        out.ids.push_piece(ids.iter().copied());
     }
     out
 }
@@ -365,7 +446,7 @@ fn merge(pieces: &[Piece], vertices: &Vertices, members: &[usize]) -> Vec<Merged
         // A strictly convex piece: every vertex is a corner.
         return vec![Merged {
             members: vec![*only],
-            rings: vec![vertices.pixels[*only].clone()],
+            rings: vec![vertices.pixels[*only].to_vec()],
         }];
     }
     let group = Group {
@@ -494,7 +575,7 @@ impl Group<'_> {
             vertex: k % pieces[members[i]].len(),
         };
         let mut edges = Vec::new();
-        let pixels = |i: usize| self.vertices.pixels[members[i]].as_slice();
+        let pixels = |i: usize| &self.vertices.pixels[members[i]];
         let open_edge = |i: usize, k: usize| !whole[first[i] + k];
         for_each_near_edges(members.len(), pixels, open, open_edge, |i, near| {
             for k in (0..pieces[members[i]].len()).filter(|&k| open_edge(i, k)) {
@@ -601,9 +682,11 @@ impl Group<'_> {
 
 /// The pairs of edges, given as ((from, to), index), that run between the same two points in
 /// opposite directions: each edge pairs with at most one, in index order.
-fn cancelling_pairs(edges: impl Iterator<Item = ((u32, u32), usize)>) -> Vec<(usize, usize)> {
+pub(crate) fn cancelling_pairs<E: Copy + Ord>(
+    edges: impl Iterator<Item = ((u32, u32), E)>,
+) -> Vec<(E, E)> {
     // (the two ends, smaller first; whether the edge runs from the larger; the edge)
-    let mut keyed: Vec<(u64, bool, usize)> = edges
+    let mut keyed: Vec<(u64, bool, E)> = edges
         .map(|((a, b), e)| (((a.min(b) as u64) << 32) | a.max(b) as u64, a > b, e))
         .collect();
     keyed.sort_unstable();
@@ -872,6 +955,25 @@ pub(super) mod tests {
     /// Rectangles (x0, y0, x1, y1) of polygon 0.
     fn rects(boxes: &[[i64; 4]]) -> Vec<Piece> {
         boxes.iter().map(|&b| rect(0, b)).collect()
+    }
+
+    /// Pieces of 3, 4 and 3 vertices in one flat list: each piece's values, and the piece every
+    /// flat index belongs to.
+    #[test]
+    fn per_vertex_values_are_found_by_piece_and_by_flat_index() {
+        let mut v = PerVertex::with_capacity(3, 10);
+        v.push_piece([10, 11, 12]);
+        v.push_piece([20, 21, 22, 23]);
+        v.push_piece([30, 31, 32]);
+        assert_eq!(v.len(), 3);
+        assert_eq!(v.vertex_count(), 10);
+        assert_eq!(&v[1], &[20, 21, 22, 23]);
+        let pieces: Vec<&[i32]> = v.iter().collect();
+        assert_eq!(pieces, [&[10, 11, 12][..], &[20, 21, 22, 23], &[30, 31, 32]]);
+        let owners: Vec<usize> = (0..10).map(|i| v.piece_of(i)).collect();
+        assert_eq!(owners, [0, 0, 0, 1, 1, 1, 1, 2, 2, 2]);
+        assert_eq!((v.first(0), v.first(1), v.first(2)), (0, 3, 7));
+        assert!(PerVertex::<u32>::default().is_empty());
     }
 
     #[test]

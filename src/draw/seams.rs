@@ -12,10 +12,9 @@
 //! same f64 pixel, so rounded bits do not name a point).
 //! Boundaries against nothing (the silhouette) or between pieces of one group are never returned.
 
-use super::regions::{UnionFind, Vertices};
+use super::regions::{PerVertex, UnionFind, Vertices, cancelling_pairs};
 use crate::exact::polygon::Piece;
 use crate::visibility::grid::for_each_near_edges;
-use rustc_hash::FxHashMap;
 use std::cmp::Ordering;
 
 /// One shared boundary segment.
@@ -50,75 +49,80 @@ pub fn shared_edges(
     group: impl Fn(usize) -> u32,
 ) -> Vec<SharedEdge> {
     let (pixels, ids) = (&vertices.pixels, &vertices.ids);
+    // Edge k of piece a is edge `ids.first(a) + k` of all.
+    let edge = |a: usize, k: usize| ids.first(a) + k;
     let ends = |a: usize, k: usize| {
         let v = &ids[a];
         (v[k], v[(k + 1) % v.len()])
     };
-    let mut edges: FxHashMap<(u32, u32), (usize, usize)> = FxHashMap::default();
-    edges.reserve(ids.iter().map(Vec::len).sum());
-    for (a, v) in ids.iter().enumerate() {
-        for k in 0..v.len() {
-            edges.insert(ends(a, k), (a, k));
-        }
+    // Per edge: the edge of another piece it is shared whole with, the other way round (pairs
+    // found by sorting the edges' end ids: no hash map of every edge alive while the segments
+    // are made).
+    const ALONE: usize = usize::MAX;
+    let mut partner = vec![ALONE; ids.vertex_count()];
+    let all_edges = (0..ids.len()).flat_map(|a| (0..ids[a].len()).map(move |k| (a, k)));
+    for (e, f) in cancelling_pairs(all_edges.map(|(a, k)| (ends(a, k), edge(a, k)))) {
+        partner[e] = f;
+        partner[f] = e;
     }
-    // Per piece and edge: shared whole with another piece.
-    let mut whole: Vec<Vec<bool>> = ids.iter().map(|v| vec![false; v.len()]).collect();
+    let whole: Vec<bool> = partner.iter().map(|&f| f != ALONE).collect();
     let mut out = Vec::new();
     for a in 0..pieces.len() {
         let n = ids[a].len();
         for k in 0..n {
-            let (p, q) = ends(a, k);
-            if let Some(&(b, j)) = edges.get(&(q, p)) {
-                whole[a][k] = true;
-                whole[b][j] = true;
-                if a < b && group(a) != group(b) {
-                    out.push(SharedEdge {
-                        pieces: [a, b],
-                        ends: [pixels[a][k], pixels[a][(k + 1) % n]],
-                        vertices: [(a, k), (a, (k + 1) % n)],
-                        line: (a, k),
-                    });
-                }
+            let f = partner[edge(a, k)];
+            if f == ALONE {
+                continue;
+            }
+            let b = ids.piece_of(f);
+            if a < b && group(a) != group(b) {
+                out.push(SharedEdge {
+                    pieces: [a, b],
+                    ends: [pixels[a][k], pixels[a][(k + 1) % n]],
+                    vertices: [(a, k), (a, (k + 1) % n)],
+                    line: (a, k),
+                });
             }
         }
     }
+    drop(partner);
     // Two collinear segments sharing a part have an end of one on the other: the pairs of
     // pieces where one has a vertex on an edge of the other not shared whole, both ways.
-    let open = |a: usize| whole[a].iter().any(|w| !w);
-    // Per piece: the later pieces it is paired with.
-    let mut later: Vec<Vec<u32>> = vec![Vec::new(); pieces.len()];
-    let points = |a: usize| pixels[a].as_slice();
+    let whole_of = |a: usize| &whole[edge(a, 0)..edge(a, 0) + ids[a].len()];
+    let open = |a: usize| whole_of(a).iter().any(|w| !w);
+    // (earlier piece, later piece) of every pair, then sorted: pieces in order, partners
+    // ascending.
+    let mut pairs: Vec<(u32, u32)> = Vec::new();
+    let points = |a: usize| &pixels[a];
     for_each_near_edges(
         pieces.len(),
         points,
         open,
-        |a, k| !whole[a][k],
+        |a, k| !whole[edge(a, k)],
         |a, near| {
             for &b in near {
                 let (first, second) = if a < b { (a, b) } else { (b, a) };
-                later[first].push(second as u32);
+                pairs.push((first as u32, second as u32));
             }
         },
     );
-    for (a, partners) in later.iter_mut().enumerate() {
-        partners.sort_unstable();
-        partners.dedup();
-        for b in partners.iter().map(|&b| b as usize) {
-            if group(b) == group(a) {
-                continue;
-            }
-            for k in (0..pieces[a].len()).filter(|&k| !whole[a][k]) {
-                let (pa, pb) = ((a, &pieces[a]), (b, &pieces[b]));
-                if let Some(ends) = shared_part(pa, k, pb, &whole[b]) {
-                    out.push(SharedEdge {
-                        pieces: [a, b],
-                        ends: ends.map(|(i, v)| pixels[i][v]),
-                        vertices: ends,
-                        line: (a, k),
-                    });
-                    // Two disjoint convex pieces share at most one segment.
-                    break;
-                }
+    pairs.sort_unstable();
+    pairs.dedup();
+    for (a, b) in pairs.into_iter().map(|(a, b)| (a as usize, b as usize)) {
+        if group(b) == group(a) {
+            continue;
+        }
+        for k in (0..pieces[a].len()).filter(|&k| !whole[edge(a, k)]) {
+            let (pa, pb) = ((a, &pieces[a]), (b, &pieces[b]));
+            if let Some(ends) = shared_part(pa, k, pb, whole_of(b)) {
+                out.push(SharedEdge {
+                    pieces: [a, b],
+                    ends: ends.map(|(i, v)| pixels[i][v]),
+                    vertices: ends,
+                    line: (a, k),
+                });
+                // Two disjoint convex pieces share at most one segment.
+                break;
             }
         }
     }
@@ -134,7 +138,7 @@ pub fn shared_edges(
 pub fn straight_runs(
     edges: &[&SharedEdge],
     pieces: &[Piece],
-    ids: &[Vec<u32>],
+    ids: &PerVertex<u32>,
 ) -> Vec<[[f64; 2]; 2]> {
     let id = |(p, v): (usize, usize)| ids[p][v];
     // Every segment end, by vertex id.
