@@ -969,7 +969,10 @@ pub(super) mod tests {
         assert_eq!(v.vertex_count(), 10);
         assert_eq!(&v[1], &[20, 21, 22, 23]);
         let pieces: Vec<&[i32]> = v.iter().collect();
-        assert_eq!(pieces, [&[10, 11, 12][..], &[20, 21, 22, 23], &[30, 31, 32]]);
+        assert_eq!(
+            pieces,
+            [&[10, 11, 12][..], &[20, 21, 22, 23], &[30, 31, 32]]
+        );
         let owners: Vec<usize> = (0..10).map(|i| v.piece_of(i)).collect();
         assert_eq!(owners, [0, 0, 0, 1, 1, 1, 1, 2, 2, 2]);
         assert_eq!((v.first(0), v.first(1), v.first(2)), (0, 3, 7));

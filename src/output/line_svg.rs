@@ -23,7 +23,7 @@
 use super::svg::{background, num, pixel_document};
 use super::svg_stream::SvgStream;
 use crate::lines::{LineDrawing, LineKind, Stroke, Visibility};
-use ::svg::node::element::{Group, Path, Style};
+use ::svg::node::element::{Group, Style};
 use std::fmt::Write;
 
 /// CSS pixels per millimetre (96 per inch).
@@ -120,11 +120,8 @@ pub fn write_line_layers(
             }
             s.open(Group::new().set("class", format!("{} {}", visibility.name(), kind.name())))?;
             for stroke in strokes {
-                s.child(
-                    Path::new()
-                        .set("d", path_data(stroke))
-                        .set("data-kind", kind.name()),
-                )?;
+                let d = path_data(stroke);
+                s.leaf("path", &mut [("d", &d), ("data-kind", kind.name())])?;
             }
             s.close()?;
         }

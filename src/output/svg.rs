@@ -73,25 +73,34 @@ pub fn write_document(
             .set("stroke-linejoin", "round");
     }
     s.open(group)?;
+    // One path per item, written directly (`SvgStream::leaf`: the crate's bytes); the strings
+    // are reused from item to item.
+    let (mut d, mut face, mut faces) = (String::new(), String::new(), String::new());
     for item in &drawing.items {
-        let mut d = String::new();
+        d.clear();
         write_rings(&mut d, &item.rings, push_num);
-        let mut path = Path::new()
-            .set("d", d)
-            .set("fill", hex(item.color))
-            .set("fill-rule", "evenodd")
-            .set("data-face", item.face);
+        let fill = hex(item.color);
+        face.clear();
+        let _ = write!(face, "{}", item.face);
+        let mut attributes = vec![
+            ("d", d.as_str()),
+            ("fill", fill.as_str()),
+            ("fill-rule", "evenodd"),
+            ("data-face", face.as_str()),
+        ];
         if !item.merged.is_empty() {
-            let all: Vec<String> = std::iter::once(item.face)
-                .chain(item.merged.iter().copied())
-                .map(|f| f.to_string())
-                .collect();
-            path = path.set("data-faces", all.join(" "));
+            faces.clear();
+            faces.push_str(&face);
+            for f in &item.merged {
+                let _ = write!(faces, " {f}");
+            }
+            attributes.push(("data-faces", faces.as_str()));
         }
-        if item.opacity < 1.0 {
-            path = path.set("fill-opacity", num(item.opacity.max(0.0)));
+        let opacity = (item.opacity < 1.0).then(|| num(item.opacity.max(0.0)));
+        if let Some(opacity) = &opacity {
+            attributes.push(("fill-opacity", opacity.as_str()));
         }
-        s.child(path)?;
+        s.leaf("path", &mut attributes)?;
     }
     s.close()?;
     if let Some((lines, line_options)) = lines {
