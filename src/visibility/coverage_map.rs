@@ -148,17 +148,16 @@ pub(crate) fn coverage_of<'a>(
     report: Option<Report>,
     occlusion: bool,
 ) -> Coverage<'a> {
-    let near: Vec<i64> = screen
-        .polys
-        .iter()
-        .map(|p| screen.corners(p).iter().map(|c| c.z).min().unwrap_or(0))
-        .collect();
     // The order sorted, not the pieces: a piece is a few hundred bytes inline, and a sort
-    // moves each many times. A stable sort of the indices gives the stable sort's order.
+    // moves each many times. A stable sort of the indices gives the stable sort's order. Each
+    // key is computed once, from the piece's own polygon (a strip holds a few of the scene's
+    // polygons: a table over all of them, per strip, cost more than the sort).
     let mut order: Vec<u32> = (0..pieces.len() as u32).collect();
-    order.sort_by_key(|&i| {
+    order.sort_by_cached_key(|&i| {
         let p = &pieces[i as usize];
-        (near[p.poly as usize], tie_key(screen, p))
+        let poly = &screen.polys[p.poly as usize];
+        let near = screen.corners(poly).iter().map(|c| c.z).min().unwrap_or(0);
+        (near, tie_key(screen, p))
     });
     let mut coverage = Coverage::with_occlusion(
         screen,
