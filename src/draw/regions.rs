@@ -680,8 +680,8 @@ impl Group<'_> {
     }
 }
 
-/// The pairs of edges, given as ((from, to), index), that run between the same two points in
-/// opposite directions: each edge pairs with at most one, in index order.
+/// The pairs of edges, given as ((from, to), name) with distinct names, that run between the
+/// same two points in opposite directions: each edge pairs with at most one, in name order.
 pub(crate) fn cancelling_pairs<E: Copy + Ord>(
     edges: impl Iterator<Item = ((u32, u32), E)>,
 ) -> Vec<(E, E)> {

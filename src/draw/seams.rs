@@ -36,8 +36,8 @@ pub struct SharedEdge {
 /// vertex in every piece.
 ///
 /// Two passes. Whole edges first: an edge of one piece whose ends are, the other way round,
-/// the ends of an edge of another is shared whole (a hash of the ends' vertex ids finds them;
-/// this is most of a mesh). Then the edges
+/// the ends of an edge of another is shared whole (sorting the edges by their ends' vertex ids
+/// finds them; this is most of a mesh). Then the edges
 /// left, where T-junctions and occlusion boundaries are: an edge of another piece lies on the
 /// same line, decided exactly, and the part they share runs between the ends of each that lie
 /// in the other piece.
