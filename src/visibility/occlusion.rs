@@ -28,6 +28,7 @@
 use super::depth;
 use super::live::bounds;
 use super::pieces_of;
+use super::strips::pop_giving_back;
 use crate::exact::polygon::Piece;
 use crate::project::ScreenScene;
 use rayon::prelude::*;
@@ -82,8 +83,16 @@ pub(crate) fn unhidden_pieces(screen: &ScreenScene, polys: &[u32]) -> (Vec<Piece
 }
 
 /// Two lists of pieces, each in increasing polygon order, as one in that order (the order the
-/// pieces of all polygons together would have).
+/// pieces of all polygons together would have; `a`'s first where a polygon is in both). Filled
+/// from the end, the inputs popped from theirs and giving back their room as they empty, then
+/// reversed: the inputs and the result are never all whole in memory (on an open mesh of a
+/// million triangles, a second whole list of pieces was the process's peak).
 fn merged(a: Vec<Piece>, b: Vec<Piece>) -> Vec<Piece> {
+    merged_by(a, b, |p| p.poly)
+}
+
+/// [`merged`] of any lists ordered by `key`.
+fn merged_by<T>(mut a: Vec<T>, mut b: Vec<T>, key: impl Fn(&T) -> u32) -> Vec<T> {
     if b.is_empty() {
         return a;
     }
@@ -91,13 +100,17 @@ fn merged(a: Vec<Piece>, b: Vec<Piece>) -> Vec<Piece> {
         return b;
     }
     let mut out = Vec::with_capacity(a.len() + b.len());
-    let (mut a, mut b) = (a.into_iter().peekable(), b.into_iter().peekable());
-    while let (Some(p), Some(q)) = (a.peek(), b.peek()) {
-        let next = if p.poly <= q.poly { a.next() } else { b.next() };
-        out.extend(next);
+    loop {
+        let from_b = match (a.last(), b.last()) {
+            (Some(p), Some(q)) => key(q) >= key(p),
+            (Some(_), None) => false,
+            (None, Some(_)) => true,
+            (None, None) => break,
+        };
+        let list = if from_b { &mut b } else { &mut a };
+        out.extend(pop_giving_back(list));
     }
-    out.extend(a);
-    out.extend(b);
+    out.reverse();
     out
 }
 
@@ -391,6 +404,28 @@ mod tests {
         ]
     }
 
+    /// Two ordered lists merged from their ends: the order a forward merge gives (the first
+    /// list first among equal keys), whichever is longer, with either empty.
+    #[test]
+    fn merged_lists_keep_the_order_of_a_forward_merge() {
+        let forward = |a: &[(u32, char)], b: &[(u32, char)]| {
+            let mut all: Vec<(u32, char)> = a.iter().chain(b).copied().collect();
+            all.sort_by_key(|x| x.0); // stable: a's before b's among equal keys
+            all
+        };
+        let a = vec![(1, 'a'), (3, 'a'), (3, 'a'), (4, 'a'), (9, 'a')];
+        let b = vec![(0, 'b'), (3, 'b'), (5, 'b'), (9, 'b'), (12, 'b')];
+        for (x, y) in [
+            (a.clone(), b.clone()),
+            (b.clone(), a.clone()),
+            (a.clone(), Vec::new()),
+            (Vec::new(), b.clone()),
+            (a[..1].to_vec(), b.clone()),
+        ] {
+            let want = forward(&x, &y);
+            assert_eq!(merged_by(x, y, |p| p.0), want);
+        }
+    }
     #[test]
     fn triangles_tried_whole_are_dropped_exactly_as_their_pieces_would_be() {
         // A sheet with a hole, and behind, in front of and around it back-facing triangles and

@@ -118,7 +118,7 @@ impl Strips {
 
     /// The pieces of each strip, left to right: every piece cut exactly by the cuts it crosses,
     /// its parts in the order of `pieces`.
-    pub fn cut(&self, pieces: Vec<Piece>) -> Vec<Vec<Piece>> {
+    pub fn cut(&self, mut pieces: Vec<Piece>) -> Vec<Vec<Piece>> {
         if self.cuts.is_empty() {
             return vec![pieces];
         }
@@ -132,7 +132,11 @@ impl Strips {
             }
         }
         let mut strips: Vec<Vec<Piece>> = sizes.into_iter().map(Vec::with_capacity).collect();
-        for (piece, b) in pieces.into_iter().zip(&boxes) {
+        // Last piece first, the list giving back its room as it empties: the list and the
+        // strips are never both whole in memory. A piece goes to a strip at most once, so each
+        // strip reversed at the end is in the order of `pieces`.
+        while let Some(piece) = pop_giving_back(&mut pieces) {
+            let b = &boxes[pieces.len()];
             let (mut k, last) = (self.first(b), self.last(b));
             let mut rest = piece;
             loop {
@@ -154,6 +158,7 @@ impl Strips {
                 k += 1;
             }
         }
+        strips.par_iter_mut().for_each(|strip| strip.reverse());
         strips
     }
 
@@ -166,6 +171,17 @@ impl Strips {
     fn last(&self, b: &[f64; 4]) -> usize {
         self.cuts.partition_point(|&c| (c as f64) <= b[2])
     }
+}
+
+/// Pops the last element of `list`, handing its room back to the allocator an eighth at a time
+/// as it empties: a list of pieces moved out one by one into another is then never whole in
+/// both at once (a large list shrinks in place, its pages unmapped).
+pub(crate) fn pop_giving_back<T>(list: &mut Vec<T>) -> Option<T> {
+    let last = list.pop();
+    if list.len() < list.capacity() - list.capacity() / 8 {
+        list.shrink_to_fit();
+    }
+    last
 }
 
 /// Counters of a strategy that add up over strips.
