@@ -426,6 +426,7 @@ mod tests {
             assert_eq!(merged_by(x, y, |p| p.0), want);
         }
     }
+
     #[test]
     fn triangles_tried_whole_are_dropped_exactly_as_their_pieces_would_be() {
         // A sheet with a hole, and behind, in front of and around it back-facing triangles and

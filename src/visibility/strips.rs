@@ -175,7 +175,7 @@ impl Strips {
 
 /// Pops the last element of `list`, handing its room back to the allocator an eighth at a time
 /// as it empties: a list of pieces moved out one by one into another is then never whole in
-/// both at once (a large list shrinks in place, its pages unmapped).
+/// both at once (glibc shrinks a large allocation in place and unmaps the pages it drops).
 pub(crate) fn pop_giving_back<T>(list: &mut Vec<T>) -> Option<T> {
     let last = list.pop();
     if list.len() < list.capacity() - list.capacity() / 8 {
@@ -237,7 +237,8 @@ pub(crate) fn solve_strips<C: Counters>(
     let fallbacks: u64 = solved.iter().map(|s| s.1).sum();
     add_fallbacks(fallbacks.saturating_sub(own));
     // The list grows by exactly each strip, which is freed once moved: the strips and the whole
-    // list are never both in memory (a large list grows in place, by remapping its pages).
+    // list are never both in memory (glibc grows a large allocation by remapping its pages, not
+    // by copying them).
     let mut pieces = Vec::new();
     let mut counters = C::default();
     for (strip, _) in solved {
