@@ -236,7 +236,7 @@ fn seam_strokes(
     let shared = seams::shared_edges(pieces, vertices, |i| group(&pieces[i]));
     let mut by_color: BTreeMap<[u8; 3], ([f64; 3], Vec<&seams::SharedEdge>)> = BTreeMap::new();
     for e in &shared {
-        let [ca, cb] = e.pieces.map(|i| color(&pieces[i]));
+        let [ca, cb] = e.pieces.map(|i| color(&pieces[i as usize]));
         let key = |c: [f64; 3]| {
             let u = to_u8(c);
             (u.iter().map(|&v| v as u32).sum::<u32>(), u)
@@ -260,7 +260,7 @@ fn seam_strokes(
         .into_values()
         .map(|(color, edges)| SeamStroke {
             color,
-            segments: seams::straight_runs(&edges, pieces, &vertices.ids),
+            segments: seams::straight_runs(&edges, pieces, vertices),
         })
         .collect()
 }

@@ -12,22 +12,39 @@
 //! same f64 pixel, so rounded bits do not name a point).
 //! Boundaries against nothing (the silhouette) or between pieces of one group are never returned.
 
-use super::regions::{PerVertex, UnionFind, Vertices, cancelling_pairs};
+use super::regions::{UnionFind, Vertices, cancelling_pairs};
 use crate::exact::polygon::Piece;
 use crate::visibility::grid::for_each_near_edges;
 use std::cmp::Ordering;
 
-/// One shared boundary segment.
-#[derive(Clone, Debug, PartialEq)]
+/// One shared boundary segment: 32 bytes (a drawing of a million pieces has about as many).
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SharedEdge {
     /// The two pieces (indices into the slice given), the first smaller.
-    pub pieces: [usize; 2],
-    /// Endpoints in pixels (y down), rounded once from the exact vertices.
-    pub ends: [[f64; 2]; 2],
+    pub pieces: [u32; 2],
     /// The exact endpoints: each a vertex (piece, vertex index) of one of the two pieces.
-    pub vertices: [(usize, usize); 2],
+    pub vertices: [(u32, u32); 2],
     /// The segment runs along line `.1` of piece `.0` (the first piece).
-    pub line: (usize, usize),
+    pub line: (u32, u32),
+}
+
+impl SharedEdge {
+    fn new(pieces: [usize; 2], vertices: [(usize, usize); 2], line: (usize, usize)) -> Self {
+        // Piece and vertex counts fit u32 (as the pieces' vertex ids do).
+        let pair = |(a, b): (usize, usize)| (a as u32, b as u32);
+        SharedEdge {
+            pieces: pieces.map(|a| a as u32),
+            vertices: vertices.map(pair),
+            line: pair(line),
+        }
+    }
+
+    /// The endpoints in pixels (y down), rounded once from the exact vertices: the
+    /// [`Vertices`] the edges were found with.
+    pub fn ends(&self, vertices: &Vertices) -> [[f64; 2]; 2] {
+        self.vertices
+            .map(|(p, v)| vertices.pixels[p as usize][v as usize])
+    }
 }
 
 /// The boundary segments shared by pieces of different groups (`group(i)` of piece i), in
@@ -76,12 +93,7 @@ pub fn shared_edges(
             }
             let b = ids.piece_of(f);
             if a < b && group(a) != group(b) {
-                out.push(SharedEdge {
-                    pieces: [a, b],
-                    ends: [pixels[a][k], pixels[a][(k + 1) % n]],
-                    vertices: [(a, k), (a, (k + 1) % n)],
-                    line: (a, k),
-                });
+                out.push(SharedEdge::new([a, b], [(a, k), (a, (k + 1) % n)], (a, k)));
             }
         }
     }
@@ -115,12 +127,7 @@ pub fn shared_edges(
         for k in (0..pieces[a].len()).filter(|&k| !whole[edge(a, k)]) {
             let (pa, pb) = ((a, &pieces[a]), (b, &pieces[b]));
             if let Some(ends) = shared_part(pa, k, pb, whole_of(b)) {
-                out.push(SharedEdge {
-                    pieces: [a, b],
-                    ends: ends.map(|(i, v)| pixels[i][v]),
-                    vertices: ends,
-                    line: (a, k),
-                });
+                out.push(SharedEdge::new([a, b], ends, (a, k)));
                 // Two disjoint convex pieces share at most one segment.
                 break;
             }
@@ -133,14 +140,14 @@ pub fn shared_edges(
 /// meeting at an exact vertex, the other end of one exactly on the other's kernel line, are one
 /// run, drawn as the union of its segments along the line. Pieces cut a boundary at points of
 /// their own (the BSP's screen splits, the coverage map's splits); joined, the segments are
-/// the maximal straight runs of the point set the edges cover, whatever the cut. `ids` are the
-/// pieces' vertex ids ([`Vertices`]).
+/// the maximal straight runs of the point set the edges cover, whatever the cut. `vertices`
+/// are the pieces' [`Vertices`], which the edges were found with.
 pub fn straight_runs(
     edges: &[&SharedEdge],
     pieces: &[Piece],
-    ids: &PerVertex<u32>,
+    vertices: &Vertices,
 ) -> Vec<[[f64; 2]; 2]> {
-    let id = |(p, v): (usize, usize)| ids[p][v];
+    let id = |(p, v): (u32, u32)| vertices.ids[p as usize][v as usize];
     // Every segment end, by vertex id.
     let mut ends: Vec<(u32, usize, usize)> = edges
         .iter()
@@ -153,7 +160,9 @@ pub fn straight_runs(
         for (i, &(_, s, _)) in meeting.iter().enumerate() {
             for &(_, t, end) in &meeting[i + 1..] {
                 let (lp, l) = edges[s].line;
+                let (lp, l) = (lp as usize, l as usize);
                 let (fp, fv) = edges[t].vertices[1 - end];
+                let (fp, fv) = (fp as usize, fv as usize);
                 let (line, approx) = (pieces[lp].line(l), pieces[lp].line_approx(l));
                 if pieces[fp].vertex_line_sign_with(fv, line, approx) == Ordering::Equal {
                     runs.union(s, t);
@@ -167,7 +176,9 @@ pub fn straight_runs(
     for run in order.chunk_by(|a, b| a.0 == b.0) {
         // A path of segments along one line, or segments overlapping on it (two strategies cut
         // one boundary into different parts): their union, whatever the cut.
-        out.extend(union_along_line(run.iter().map(|&(_, s)| edges[s].ends)));
+        out.extend(union_along_line(
+            run.iter().map(|&(_, s)| edges[s].ends(vertices)),
+        ));
     }
     out
 }
@@ -313,9 +324,9 @@ mod tests {
         let mut out: Vec<_> = shared_edges(pieces, &vertices, group)
             .into_iter()
             .map(|e| {
-                let mut ends = e.ends.map(to_grid);
+                let mut ends = e.ends(&vertices).map(to_grid);
                 ends.sort_by(|x, y| x.partial_cmp(y).unwrap());
-                (e.pieces, ends)
+                (e.pieces.map(|a| a as usize), ends)
             })
             .collect();
         out.sort_by(|x, y| x.partial_cmp(y).unwrap());
@@ -376,7 +387,7 @@ mod tests {
         let vertices = shared_vertices(pieces, &grid_samples());
         let edges = shared_edges(pieces, &vertices, group);
         let edges: Vec<&SharedEdge> = edges.iter().collect();
-        let mut out: Vec<[[f64; 2]; 2]> = straight_runs(&edges, pieces, &vertices.ids)
+        let mut out: Vec<[[f64; 2]; 2]> = straight_runs(&edges, pieces, &vertices)
             .into_iter()
             .map(|e| {
                 let mut e = e.map(to_grid);
