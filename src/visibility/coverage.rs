@@ -32,6 +32,15 @@ pub(crate) fn tie_key(screen: &ScreenScene, p: &Piece) -> (Reverse<u32>, Reverse
     (Reverse(screen.polys[p.poly as usize].id), Reverse(p.poly))
 }
 
+/// The order of polygons nearest first: nearest corner first, then the z-buffer's tie rule
+/// (front first, as [`tie_key`]). The coverage map inserts pieces in this order, Weiler and
+/// Atherton take clip polygons in it, and Warnock's subdivision tries surrounding pieces in it.
+pub(crate) fn nearest_first(screen: &ScreenScene, poly: u32) -> impl Ord {
+    let p = &screen.polys[poly as usize];
+    let nearest = screen.corners(p).iter().map(|c| c.z).min().unwrap_or(0);
+    (nearest, Reverse(p.id), Reverse(poly))
+}
+
 /// Counters of one coverage pass.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct CoverageStats {

@@ -12,7 +12,7 @@
 //! order of a BSP of their own pieces ([`translucent_layer`]).
 
 use super::bsp::translucent_layer;
-use super::coverage::{Coverage, CoverageStats, tie_key};
+use super::coverage::{Coverage, CoverageStats, nearest_first};
 use super::occlusion::{drop_hidden, unhidden_pieces};
 use super::strips::{Strips, solve_strips};
 use super::visible_set::{Stats, VisibleSet};
@@ -153,12 +153,7 @@ pub(crate) fn coverage_of<'a>(
     // key is computed once, from the piece's own polygon (a strip holds a few of the scene's
     // polygons: a table over all of them, per strip, cost more than the sort).
     let mut order: Vec<u32> = (0..pieces.len() as u32).collect();
-    order.sort_by_cached_key(|&i| {
-        let p = &pieces[i as usize];
-        let poly = &screen.polys[p.poly as usize];
-        let near = screen.corners(poly).iter().map(|c| c.z).min().unwrap_or(0);
-        (near, tie_key(screen, p))
-    });
+    order.sort_by_cached_key(|&i| nearest_first(screen, pieces[i as usize].poly));
     let mut coverage = Coverage::with_occlusion(
         screen,
         order.iter().map(|&i| &pieces[i as usize]),

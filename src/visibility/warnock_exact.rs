@@ -20,7 +20,7 @@
 //! carry the area lines they were clipped by as [`Boundary::ScreenSplit`]. Translucent faces are
 //! layered over the result as the coverage map layers them.
 
-use super::coverage::tie_key;
+use super::coverage::{nearest_first, tie_key};
 use super::strips::Counters;
 use super::visible_set::{VisibleSet, put_counts};
 use super::weiler_atherton;
@@ -253,7 +253,7 @@ impl Run<'_> {
             .filter(|(_, c)| *c == Class::Surrounding)
             .map(|&(p, _)| p)
             .collect();
-        surrounding.sort_by_cached_key(|p| weiler_atherton::clip_order(self.screen, p.poly));
+        surrounding.sort_by_cached_key(|p| nearest_first(self.screen, p.poly));
         for front in surrounding {
             if !list.iter().any(|(p, _)| std::ptr::eq(*p, front)) {
                 continue;

@@ -24,7 +24,7 @@
 //! of one no polygon is nearer. Translucent faces are layered over the result as the coverage map
 //! layers them ([`super::bsp::translucent_layer`]).
 
-use super::coverage::{clip_overlapping, split_by_depth};
+use super::coverage::{clip_overlapping, nearest_first, split_by_depth};
 use super::live::{Live, bounds};
 use super::strips::Counters;
 use super::visible_set::{VisibleSet, put_counts};
@@ -199,14 +199,6 @@ fn within_limit(
     finished.then_some((out, st))
 }
 
-/// Weiler and Atherton's order of clip polygons: nearest corner first, then the z-buffer's tie
-/// rule (front first). Warnock's subdivision tries surrounding pieces in this order too.
-pub(crate) fn clip_order(screen: &ScreenScene, poly: u32) -> impl Ord {
-    let p = &screen.polys[poly as usize];
-    let nearest = screen.corners(p).iter().map(|c| c.z).min().unwrap_or(0);
-    (nearest, std::cmp::Reverse(p.id), std::cmp::Reverse(poly))
-}
-
 /// The end of a chain of pieces.
 const NONE: u32 = u32::MAX;
 
@@ -267,13 +259,13 @@ struct Level {
 
 impl Level {
     /// The level resolving `pieces`, taking `first`'s polygon as the first clip polygon when
-    /// given, then the others in [`clip_order`].
+    /// given, then the others in [`nearest_first`].
     fn new(screen: &ScreenScene, pieces: Vec<Piece>, first: Option<u32>) -> Level {
-        // Ranks by `first`, then `clip_order`. Each rank's live pieces form a chain through
+        // Ranks by `first`, then `nearest_first`. Each rank's live pieces form a chain through
         // `next` from `head[rank]`, so the region of a clip polygon is found without a map of
         // polygons (outside parts join their piece's chain).
         let mut order: Vec<(u32, usize)> = pieces.iter().map(|p| p.poly).zip(0..).collect();
-        order.sort_by_cached_key(|&(k, i)| (Some(k) != first, clip_order(screen, k), i));
+        order.sort_by_cached_key(|&(k, i)| (Some(k) != first, nearest_first(screen, k), i));
         let mut rank_of_piece = vec![0u32; pieces.len()];
         let mut ranks = 0u32;
         for (n, &(poly, i)) in order.iter().enumerate() {
@@ -369,7 +361,7 @@ fn resolve(
         let offender = in_front
             .iter()
             .map(|p| p.poly)
-            .min_by_key(|&k| clip_order(screen, k))
+            .min_by_key(|&k| nearest_first(screen, k))
             .expect("not empty");
         let mut inside = region;
         inside.extend(in_front);
