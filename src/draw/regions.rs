@@ -524,7 +524,7 @@ impl Group<'_> {
     fn side(&self, at: At, (piece, line): (usize, usize)) -> Ordering {
         let p = &self.pieces[piece];
         self.piece(at)
-            .vertex_line_sign_with(at.vertex, p.line(line), p.line_approx(line))
+            .vertex_line_sign_with(at.vertex, p.line(line), &p.line_approx(line))
     }
 
     /// Of the two lines of `x`'s piece through `x`, one that `other` (another point) is not on,
@@ -646,9 +646,10 @@ impl Group<'_> {
                     continue;
                 }
                 let strictly_inside = pa.lines_with_approx().enumerate().all(|(l, (m, ma))| {
-                    l == k || pb.vertex_line_sign_with(v, m, ma) == Ordering::Greater
+                    l == k || pb.vertex_line_sign_with(v, m, &ma) == Ordering::Greater
                 });
-                if strictly_inside && pb.vertex_line_sign_with(v, line, approx) == Ordering::Equal {
+                if strictly_inside && pb.vertex_line_sign_with(v, line, &approx) == Ordering::Equal
+                {
                     let ([x0, y0], [x, y]) = (self.pixel(start), self.pixel(at));
                     found.push(((x - x0).abs() + (y - y0).abs(), id, at));
                 }

@@ -164,7 +164,7 @@ pub fn straight_runs(
                 let (fp, fv) = edges[t].vertices[1 - end];
                 let (fp, fv) = (fp as usize, fv as usize);
                 let (line, approx) = (pieces[lp].line(l), pieces[lp].line_approx(l));
-                if pieces[fp].vertex_line_sign_with(fv, line, approx) == Ordering::Equal {
+                if pieces[fp].vertex_line_sign_with(fv, line, &approx) == Ordering::Equal {
                     runs.union(s, t);
                 }
             }
@@ -242,7 +242,7 @@ fn shared_part(
     // An edge j of b on a's line k: both of its ends on that line (a strictly convex piece has
     // at most one edge on a line).
     let on: Vec<bool> = (0..nb)
-        .map(|v| b.vertex_line_sign_with(v, line, approx) == Ordering::Equal)
+        .map(|v| b.vertex_line_sign_with(v, line, &approx) == Ordering::Equal)
         .collect();
     let j = (0..nb).find(|&j| !b_whole[j] && on[j] && on[(j + 1) % nb])?;
     // The shared part of the two collinear edges runs between the ends of each that lie in the
@@ -250,7 +250,7 @@ fn shared_part(
     // Edges with both pieces on one side of the line meet at most at a point: no segment.
     let in_closed = |p: &Piece, v: usize, q: &Piece| {
         q.lines_with_approx()
-            .all(|(l, la)| p.vertex_line_sign_with(v, l, la) != Ordering::Less)
+            .all(|(l, la)| p.vertex_line_sign_with(v, l, &la) != Ordering::Less)
     };
     let from_a: Vec<usize> = [k, (k + 1) % na]
         .into_iter()

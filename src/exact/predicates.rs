@@ -326,6 +326,26 @@ impl Line {
 
     /// The f64 coefficients with error bounds (each below `5·U·M`, see the module docs).
     pub fn approx(&self) -> LineApprox {
+        if let Line::Edge([p, q]) = self {
+            // The hot case (pieces no longer cache their lines' approximations): the same
+            // values as below, without the i128 detour for a and b, which fit i64.
+            let (a, b) = (p[1] - q[1], q[0] - p[0]);
+            let d = -(a as i128 * p[0] as i128 + b as i128 * p[1] as i128);
+            let (a, b, d) = (a as f64, b as f64, i128_to_f64(d));
+            return LineApprox {
+                a,
+                b,
+                d,
+                ea: ENTRY_ERROR * a.abs(),
+                eb: ENTRY_ERROR * b.abs(),
+                ed: ENTRY_ERROR * d.abs(),
+            };
+        }
+        self.approx_filtered()
+    }
+
+    /// [`Self::approx`] through [`Self::filtered`], for every kind of line.
+    fn approx_filtered(&self) -> LineApprox {
         let [a, b, d] = self.filtered();
         let e = |c: Entry| ENTRY_ERROR * c.magnitude;
         LineApprox {
@@ -823,6 +843,33 @@ mod tests {
             seed ^= seed >> 7;
             seed ^= seed << 17;
             seed
+        }
+    }
+
+    /// An edge's f64 coefficients and bounds from the i64 fast path are the general path's,
+    /// bit for bit, out to the grid's extremes (where a and b reach 2^54 and round).
+    #[test]
+    fn an_edges_approximation_is_the_general_one() {
+        let mut next = xorshift(5);
+        let max = super::super::GRID_MAX;
+        let mut coordinate = |scale: u32| {
+            let v = (next() >> (11 + scale)) as i64 % (max + 1);
+            if next() & 1 == 0 { v } else { -v }
+        };
+        let mut edges = vec![
+            Line::edge(GridPoint::new(-max, -max, 0), GridPoint::new(max, max, 0)),
+            Line::edge(
+                GridPoint::new(max, -max, 0),
+                GridPoint::new(-max, max - 1, 0),
+            ),
+        ];
+        for case in 0..20_000 {
+            let scale = (case % 4) * 12;
+            let mut point = || GridPoint::new(coordinate(scale), coordinate(scale), 0);
+            edges.push(Line::edge(point(), point()));
+        }
+        for l in edges.into_iter().flatten() {
+            assert_eq!(l.approx(), l.approx_filtered(), "{l:?}");
         }
     }
 

@@ -408,7 +408,7 @@ pub(crate) fn clip_overlapping(
     );
     let mut inside = piece;
     for ((line, approx), origin) in front.lines_with_approx().zip(front.boundaries()) {
-        match inside.split_by_line_with(line, approx, origin) {
+        match inside.split_by_line_with(line, &approx, origin) {
             // Entirely outside this line of `front`: nothing of it is inside.
             Split::Negative => {
                 outside.push(inside);
