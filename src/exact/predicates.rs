@@ -846,16 +846,23 @@ mod tests {
         }
     }
 
+    /// Random grid coordinates within the grid's extremes, `scale` bits shorter (0: out to
+    /// `GRID_MAX`), either sign.
+    fn grid_coordinates(seed: u64) -> impl FnMut(u32) -> i64 {
+        let mut next = xorshift(seed);
+        let max = super::super::GRID_MAX;
+        move |scale: u32| {
+            let v = (next() >> (11 + scale)) as i64 % (max + 1);
+            if next() & 1 == 0 { v } else { -v }
+        }
+    }
+
     /// An edge's f64 coefficients and bounds from the i64 fast path are the general path's,
     /// bit for bit, out to the grid's extremes (where a and b reach 2^54 and round).
     #[test]
     fn an_edges_approximation_is_the_general_one() {
-        let mut next = xorshift(5);
         let max = super::super::GRID_MAX;
-        let mut coordinate = |scale: u32| {
-            let v = (next() >> (11 + scale)) as i64 % (max + 1);
-            if next() & 1 == 0 { v } else { -v }
-        };
+        let mut coordinate = grid_coordinates(5);
         let mut edges = vec![
             Line::edge(GridPoint::new(-max, -max, 0), GridPoint::new(max, max, 0)),
             Line::edge(
@@ -877,12 +884,7 @@ mod tests {
     /// grid's extremes.
     #[test]
     fn edges_cross_in_256_bits_as_in_the_general_width() {
-        let mut next = xorshift(11);
-        let max = super::super::GRID_MAX;
-        let mut coordinate = |scale: u32| {
-            let v = (next() >> (11 + scale)) as i64 % (max + 1);
-            if next() & 1 == 0 { v } else { -v }
-        };
+        let mut coordinate = grid_coordinates(11);
         let mut crossed = 0;
         for case in 0..20_000 {
             let scale = (case % 4) * 12;
