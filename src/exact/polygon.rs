@@ -459,7 +459,8 @@ impl Piece {
         self.sides_of_line_with(l, &l.approx())
     }
 
-    /// [`Self::sides_of_line`] with `l.approx()` given (computed once by a caller testing many pieces).
+    /// [`Self::sides_of_line`] with `l.approx()` given (computed once by a caller testing many
+    /// pieces).
     pub fn sides_of_line_with(&self, l: &Line, la: &LineApprox) -> (bool, bool) {
         self.sides(|k| self.vertex_line_sign_with(k, l, la))
     }
@@ -508,7 +509,8 @@ impl Piece {
         self.split_by_line_with(l, &l.approx(), origin)
     }
 
-    /// [`Self::split_by_line`] with `l.approx()` given (computed once by a caller testing many pieces).
+    /// [`Self::split_by_line`] with `l.approx()` given (computed once by a caller testing many
+    /// pieces).
     pub fn split_by_line_with(&self, l: &Line, la: &LineApprox, origin: Boundary) -> Split {
         let signs: Signs = (0..self.len())
             .map(|k| self.vertex_line_sign_with(k, l, la))
