@@ -29,7 +29,12 @@ use std::cmp::Reverse;
 
 /// The order of coplanar pieces, front first: larger face id, then later polygon.
 pub(crate) fn tie_key(screen: &ScreenScene, p: &Piece) -> (Reverse<u32>, Reverse<u32>) {
-    (Reverse(screen.polys[p.poly as usize].id), Reverse(p.poly))
+    polygon_tie_key(screen, p.poly)
+}
+
+/// [`tie_key`] of polygon `poly`'s pieces.
+fn polygon_tie_key(screen: &ScreenScene, poly: u32) -> (Reverse<u32>, Reverse<u32>) {
+    (Reverse(screen.polys[poly as usize].id), Reverse(poly))
 }
 
 /// The order of polygons nearest first: nearest corner first, then the z-buffer's tie rule
@@ -38,7 +43,7 @@ pub(crate) fn tie_key(screen: &ScreenScene, p: &Piece) -> (Reverse<u32>, Reverse
 pub(crate) fn nearest_first(screen: &ScreenScene, poly: u32) -> impl Ord {
     let p = &screen.polys[poly as usize];
     let nearest = screen.corners(p).iter().map(|c| c.z).min().unwrap_or(0);
-    (nearest, Reverse(p.id), Reverse(poly))
+    (nearest, polygon_tie_key(screen, poly))
 }
 
 /// Counters of one coverage pass.
