@@ -39,7 +39,7 @@ use crate::exact::polygon::Piece;
 use crate::exact::predicates::fallback_count;
 use crate::progress::Report;
 use crate::project::ScreenScene;
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, Ordering as AtomicOrdering};
 
 /// The automatic strategy. See the module docs.
 #[derive(Clone, Copy, Debug, Default)]
@@ -166,7 +166,8 @@ impl Strategy for Auto {
             )),
             Orderer::WeilerAtherton => {
                 let pieces = std::mem::take(&mut overlapping);
-                match by_clipping(screen, pieces, report, &mut stats, &skipped, &why) {
+                let again = || unhidden_pieces(screen, &other_polys).0;
+                match by_clipping(screen, pieces, again, report, &mut stats, &skipped, &why) {
                     Ok(visible) => Some(visible),
                     Err(strips) => {
                         given_up = format!(
@@ -257,11 +258,13 @@ fn by_subdivision(
 }
 
 /// Orders `pieces` by Weiler–Atherton clipping, or gives up past [`CLIP_BUDGET`] and returns
-/// their polygons' pieces, made again, cut into the same strips for the map (nothing written
-/// to `stats` then).
+/// the same pieces cut into the same strips for the map (nothing written to `stats` then):
+/// each strip as it was given, or, where a strip was solved before another gave up, all of
+/// them from `again` (which makes `pieces` again, the same list) cut again.
 fn by_clipping(
     screen: &ScreenScene,
     pieces: Vec<Piece>,
+    again: impl FnOnce() -> Vec<Piece>,
     report: Option<Report>,
     stats: &mut Stats,
     skipped: &str,
@@ -270,22 +273,32 @@ fn by_clipping(
     let n = pieces.len();
     let strips = Strips::for_pieces(&pieces);
     let strip_count = strips.count();
-    // The polygons the pieces come from (increasing), to make them again if clipping gives up
-    // (clipping consumes its pieces). A copy of the strips would save samurai_monastery 0.1 to
-    // 0.15 s of its 4 s when it gives up, but add its size to the peak of every scene where
-    // clipping finishes (xarm6_link2 117 -> 134 MB, diff_ring_gear 243 -> 266 MB).
-    let mut polys: Vec<u32> = pieces.iter().map(|p| p.poly).collect();
-    polys.sort_unstable();
-    polys.dedup();
-    // One strip giving up gives up the whole: the others stop at their next clip polygon.
+    // One strip giving up gives up the whole: the others stop at their next clip polygon, and
+    // those not started yet are handed back as they are. Clipping consumes its pieces, so a
+    // strip keeps a copy while it runs (a strip of a few thousand pieces, one per thread: the
+    // whole list copied would add its size to the peak of every scene where clipping finishes,
+    // xarm6_link2 117 -> 134 MB, diff_ring_gear 243 -> 266 MB). Without them, samurai_monastery
+    // made its pieces and strips again after giving up: 0.13 s of its 3 s.
     let stop = AtomicBool::new(false);
-    let Some((visible, ws)) = solve_strips(strips.cut(pieces), report, |strip, report| {
+    let solved = solve_strips(strips.cut(pieces), report, |strip, report| {
+        if stop.load(AtomicOrdering::Relaxed) {
+            return Err(strip);
+        }
+        let given = strip.clone();
         weiler_atherton::visible_pieces_within_or_stopped(screen, strip, report, CLIP_BUDGET, &stop)
-    }) else {
-        // Every piece of those polygons (those the occlusion cells dropped too: the map drops
-        // them), cut at the attempt's strip lines (any lines cut a scene into independent
-        // strips; these are the pieces' own quantiles when none was dropped).
-        return Err(strips.cut(pieces_of(screen, &polys)));
+            .ok_or(given)
+    });
+    let (visible, ws) = match solved {
+        Ok(solved) => solved,
+        Err(given) => {
+            return Err(match given.into_iter().collect::<Option<Vec<_>>>() {
+                Some(strips) => strips,
+                // A strip finished before another gave up: its pieces are gone. Every strip
+                // is made again (not only the finished ones: which strips finished depends on
+                // timing, and the map must get the same pieces whatever it was).
+                None => strips.cut(again()),
+            });
+        }
     };
     stage(
         stats,
@@ -751,27 +764,47 @@ mod tests {
         assert_eq!(chose(crowding(2.0, 2.5, 0.0, 8.0)), Orderer::WeilerAtherton);
     }
 
-    /// Clipping chosen (large squares over many small triangles) and given up (tilted squares,
+    /// Large squares over many small triangles: clipping is chosen and given up (tilted squares,
     /// [`tilted_squares`]: more levels than [`DEEPEST_CLIP_RECURSION`], each handing all the
-    /// rest down): the map finishes the job with the pieces made again, and the visible set is
-    /// the map's.
-    #[test]
-    fn clipping_given_up_hands_every_piece_to_the_map() {
+    /// rest down). `left` more small triangles left of the squares (a strip of their own, solved
+    /// by clipping before the others give up).
+    fn squares_over_triangles(left: i64) -> ScreenScene {
+        squares_over_triangles_mirrored(left, false)
+    }
+
+    /// [`squares_over_triangles`], mirrored (x to -x) when `mirrored`.
+    fn squares_over_triangles_mirrored(left: i64, mirrored: bool) -> ScreenScene {
         use crate::exact::GridPoint;
         use crate::visibility::{screen_of_polygons, tilted_squares};
         let planks = DEEPEST_CLIP_RECURSION as i64 + 20;
         const W: i64 = 1 << 30;
         let squares = tilted_squares(planks, W);
-        // Small triangles far behind the squares, in a row along the bottom.
-        let small = (0..1000).map(|k| {
-            let (x, z) = (k * (W / 1000), 100 * planks);
+        let z = 100 * planks;
+        let triangle = move |x: i64| {
             vec![
                 GridPoint::new(x, 0, z),
                 GridPoint::new(x + 1000, 0, z),
                 GridPoint::new(x, 1000, z),
             ]
-        });
-        let screen = screen_of_polygons(squares.chain(small));
+        };
+        // Small triangles far behind the squares, in a row along the bottom.
+        let small = (0..1000).map(move |k| triangle(k * (W / 1000)));
+        let apart = (1..=left).map(move |k| triangle(-k * (W / 1000)));
+        let mirror = move |mut p: Vec<GridPoint>| {
+            if mirrored {
+                // Counter-clockwise still.
+                p.iter_mut().for_each(|q| q.x = -q.x);
+                p.reverse();
+            }
+            p
+        };
+        screen_of_polygons(squares.chain(small).chain(apart).map(mirror))
+    }
+
+    /// Clipping given up: the map finishes the job, and the visible set is the map's.
+    #[test]
+    fn clipping_given_up_hands_every_piece_to_the_map() {
+        let screen = squares_over_triangles(0);
         let auto = Auto.visible_set(&screen, &|_| false, None);
         assert_eq!(auto.stats["chosen"], "coverage after weiler-atherton");
         let map = CoverageMap.visible_set(&screen, &|_| false, None);
@@ -780,7 +813,48 @@ mod tests {
         let mut shown: Vec<u32> = auto.pieces.iter().map(|p| p.poly).collect();
         shown.sort_unstable();
         shown.dedup();
-        assert_eq!(shown, [0, planks as u32 - 1]);
+        let planks = DEEPEST_CLIP_RECURSION as u32 + 20;
+        assert_eq!(shown, [0, planks - 1]);
+    }
+
+    /// After giving up, the map gets the very pieces in the very strips it would have got as
+    /// the choice, however far the strips got: handed back as they were given (one strip; or
+    /// strips not started, or copies of those that ran), or all made again when one was solved
+    /// before another gave up (the strip of triangles left of the squares, first on one
+    /// thread). So its counters are the map's own, on any number of threads.
+    #[test]
+    fn clipping_given_up_hands_the_map_the_pieces_it_would_have_chosen() {
+        use crate::visibility::strips::with_strip_size;
+        let counters = [
+            "pieces",
+            "overlap_tests",
+            "replaced",
+            "strips",
+            "visible_pieces",
+        ];
+        for (left, mirrored, size) in [(0, false, usize::MAX), (300, false, 150), (0, true, 150)] {
+            let screen = squares_over_triangles_mirrored(left, mirrored);
+            for threads in [1, 2] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .expect("a pool");
+                let (auto, map) = pool.install(|| {
+                    with_strip_size(size, || {
+                        let auto = Auto.visible_set(&screen, &|_| false, None);
+                        (auto, CoverageMap.visible_set(&screen, &|_| false, None))
+                    })
+                });
+                assert_eq!(auto.stats["chosen"], "coverage after weiler-atherton");
+                for k in counters {
+                    assert_eq!(
+                        auto.stats[k], map.stats[k],
+                        "{k}: {left} left, {threads} threads"
+                    );
+                }
+                assert_eq!(auto.pieces, map.pieces);
+            }
+        }
     }
 
     #[test]

@@ -42,7 +42,7 @@ impl Strategy for BspTree {
             let mut st = bsp.stats.clone();
             let visible = bsp.into_coverage(screen).into_pieces();
             st.visible_pieces = visible.len();
-            Some((visible, st))
+            Ok((visible, st))
         })
         .expect("the BSP never gives up");
         let (visible, layered, translucent_bsp) = if layered {

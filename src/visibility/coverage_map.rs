@@ -135,7 +135,7 @@ pub(crate) fn visible_pieces_of_strips(
     solve_strips(strips, report, |strip, report| {
         let coverage = coverage_of(screen, strip, report, false);
         let stats = coverage.stats.clone();
-        Some((coverage.into_pieces(), stats))
+        Ok((coverage.into_pieces(), stats))
     })
     .expect("the coverage map never gives up")
 }

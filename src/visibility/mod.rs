@@ -88,7 +88,7 @@ fn opaque_then_layered<C: strips::Counters>(
     };
     let strip_count = strips.count();
     let (visible, counters) = strips::solve_strips(strips.cut(opaque), report, |strip, report| {
-        Some(resolve(strip, report))
+        Ok(resolve(strip, report))
     })
     .expect("resolve never gives up");
     let mut stats = Stats::new();

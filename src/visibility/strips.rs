@@ -190,25 +190,35 @@ pub(crate) trait Counters: Default + Send {
     fn add(&mut self, other: &Self);
 }
 
+/// What a given-up [`solve_strips`] hands back: each strip's pieces as they were given, `None`
+/// for a strip solved before the attempt was given up (its pieces are gone).
+pub(crate) type GivenUp = Vec<Option<Vec<Piece>>>;
+
 /// Solves each strip with `solve(pieces, report)` on the rayon pool and returns the visible
-/// pieces in strip order with the counters summed, or `None` if a strip's `solve` gave up (its
-/// exact fallbacks then not counted: `solve` may stop other strips early).
+/// pieces in strip order with the counters summed. A `solve` may give up, handing back the
+/// strip's pieces as it was given them (`Err`); then the whole is given up ([`GivenUp`]), its
+/// exact fallbacks not counted (`solve` may stop other strips early, so how far they got
+/// depends on timing).
 /// Progress: a single strip is solved on this thread with `report` as it is; several report
 /// stage "visible set" as pieces of finished strips.
 pub(crate) fn solve_strips<C: Counters>(
     strips: Vec<Vec<Piece>>,
     report: Option<Report>,
-    solve: impl Fn(Vec<Piece>, Option<Report>) -> Option<(Vec<Piece>, C)> + Sync,
-) -> Option<(Vec<Piece>, C)> {
+    solve: impl Fn(Vec<Piece>, Option<Report>) -> Result<(Vec<Piece>, C), Vec<Piece>> + Sync,
+) -> Result<(Vec<Piece>, C), GivenUp> {
     if strips.len() == 1 {
         let only = strips.into_iter().next().expect("one strip");
-        return solve(only, report);
+        let before = fallback_count();
+        return solve(only, report).map_err(|given| {
+            reset_fallbacks(before);
+            vec![Some(given)]
+        });
     }
     let total: usize = strips.iter().map(Vec::len).sum();
     let ticker = Mutex::new((Ticker::new(report, "visible set", total as u64), 0u64));
     let own_before = fallback_count();
     // Per strip: what `solve` returned, and the exact fallbacks it counted.
-    type Solved<C> = (Option<(Vec<Piece>, C)>, u64);
+    type Solved<C> = (Result<(Vec<Piece>, C), Vec<Piece>>, u64);
     let solved: Vec<Solved<C>> = strips
         .into_par_iter()
         .map(|pieces| {
@@ -228,11 +238,9 @@ pub(crate) fn solve_strips<C: Counters>(
     let own = fallback_count() - own_before;
     let (ticker, _) = ticker.into_inner().unwrap_or_else(|e| e.into_inner());
     ticker.finish();
-    if solved.iter().any(|s| s.0.is_none()) {
-        // Given up: how far the other strips got depends on timing (a strip that gives up may
-        // stop the others), so nothing of the attempt is counted.
+    if solved.iter().any(|s| s.0.is_err()) {
         reset_fallbacks(own_before);
-        return None;
+        return Err(solved.into_iter().map(|s| s.0.err()).collect());
     }
     let fallbacks: u64 = solved.iter().map(|s| s.1).sum();
     add_fallbacks(fallbacks.saturating_sub(own));
@@ -241,13 +249,13 @@ pub(crate) fn solve_strips<C: Counters>(
     // by copying them).
     let mut pieces = Vec::new();
     let mut counters = C::default();
-    for (strip, _) in solved {
-        let (p, c) = strip?;
+    // Every strip is `Ok` (checked above).
+    for (p, c) in solved.into_iter().filter_map(|s| s.0.ok()) {
         pieces.reserve_exact(p.len());
         pieces.extend(p);
         counters.add(&c);
     }
-    Some((pieces, counters))
+    Ok((pieces, counters))
 }
 
 #[cfg(test)]
@@ -295,18 +303,21 @@ mod tests {
         let before = fallback_count();
         let solved = solve_strips(strips(), None, |_, _| {
             add_fallbacks(5);
-            Some((Vec::new(), CoverageStats::default()))
+            Ok((Vec::new(), CoverageStats::default()))
         });
-        assert!(solved.is_some());
+        assert!(solved.is_ok());
         assert_eq!(fallback_count() - before, 15);
         let before = fallback_count();
         let calls = std::sync::atomic::AtomicUsize::new(0);
         let solved = solve_strips(strips(), None, |_, _| {
             add_fallbacks(5);
             let k = calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            (k != 1).then(|| (Vec::new(), CoverageStats::default()))
+            match k {
+                1 => Err(Vec::new()),
+                _ => Ok((Vec::new(), CoverageStats::default())),
+            }
         });
-        assert!(solved.is_none());
+        assert!(solved.is_err());
         assert_eq!(fallback_count(), before);
     }
 
