@@ -53,8 +53,6 @@ pub struct ScreenPoly {
     pub start: u32,
     /// Number of corners.
     pub len: u32,
-    /// Its support plane, through its exact grid corners (`c > 0`).
-    pub plane: Plane,
     /// Seen from its front: counter-clockwise on screen, or clockwise in a mesh wound inwards
     /// (closed and inside-out, or open with a certainly negative signed volume:
     /// [`crate::scene::analysis::MeshAnalysis::wound_inwards`]). Culling drops only the back
@@ -156,6 +154,21 @@ impl ScreenScene {
     #[inline]
     pub fn sides(&self, p: &ScreenPoly) -> &[Side] {
         &self.sides[p.start as usize..(p.start + p.len) as usize]
+    }
+
+    /// The support plane of `p`, through its exact grid corners (`c > 0`):
+    /// [`Plane::of_polygon`] of them, computed on each call (a few 128-bit products). Not
+    /// stored: 80 bytes per polygon, a third of the scene's size, that only the first steps of
+    /// an algorithm read (pieces share theirs); an algorithm that reads them often keeps
+    /// [`ScreenScene::planes`].
+    pub fn plane(&self, p: &ScreenPoly) -> Plane {
+        Plane::of_polygon(self.corners(p))
+            .expect("a screen polygon has a support plane: `project` drops those without")
+    }
+
+    /// Every polygon's support plane ([`ScreenScene::plane`]), in polygon order.
+    pub fn planes(&self) -> Vec<Plane> {
+        self.polys.iter().map(|p| self.plane(p)).collect()
     }
 }
 
@@ -323,9 +336,10 @@ fn split_into_triangles(
         if !ccw {
             t.reverse();
         }
-        let Some(plane) = Plane::through(ring[t[0]], ring[t[1]], ring[t[2]]) else {
+        // A triangle of no area on the grid goes (its plane, `ScreenScene::plane`, is this).
+        if Plane::through(ring[t[0]], ring[t[1]], ring[t[2]]).is_none() {
             continue;
-        };
+        }
         let tri_start = points.len();
         for j in 0..3 {
             let (a, b) = (t[j], t[(j + 1) % 3]);
@@ -339,7 +353,6 @@ fn split_into_triangles(
         polys.push(ScreenPoly {
             start: tri_start as u32,
             len: 3,
-            plane,
             ..poly
         });
     }
@@ -499,7 +512,6 @@ pub fn project(
             mesh: face.mesh,
             start: start as u32,
             len: (points.len() - start) as u32,
-            plane,
             front,
         };
         let planar = poly.len == 3 || points[start..].iter().all(|c| plane.sign_at(*c).is_eq());
@@ -511,6 +523,11 @@ pub fn project(
         }
     }
     stats.visible_polys = polys.len();
+    // Reserved for every face; culling leaves about half of a closed mesh's. (Shrinking a
+    // large block gives its pages back in place: no copy.)
+    polys.shrink_to_fit();
+    points.shrink_to_fit();
+    sides.shrink_to_fit();
     ScreenScene {
         polys,
         points,

@@ -272,7 +272,7 @@ fn faces_in_front(screen: &ScreenScene, own: &[u32], p: &[BigRational; 2], z: &B
         let on_outline = (0..k).any(|i| signs[i] == 0 && sides[i] != Side::Diagonal);
         let entry = depth_of_face
             .entry(poly.face)
-            .or_insert(Some(depth(&poly.plane, p)));
+            .or_insert(Some(depth(&screen.plane(poly), p)));
         if on_outline {
             *entry = None;
         }

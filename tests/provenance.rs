@@ -52,8 +52,8 @@ fn check_piece(screen: &ScreenScene, piece: &Piece, seen: &mut [usize; 4]) {
             }
             Boundary::Cut { a, b } => {
                 let (pa, pb) = (
-                    screen.polys[a as usize].plane,
-                    screen.polys[b as usize].plane,
+                    screen.plane(&screen.polys[a as usize]),
+                    screen.plane(&screen.polys[b as usize]),
                 );
                 assert!(
                     *line == Line::cut(pa, pb) || *line == Line::cut(pb, pa),

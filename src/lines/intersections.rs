@@ -66,9 +66,13 @@ pub fn meetings(
     weld: &[u32],
 ) -> Vec<Meeting> {
     let polys = &screen.polys;
+    // Every pair reads them: made once.
+    let planes = screen.planes();
     let mut boxes: Vec<[f64; 4]> = polys.iter().map(|p| screen_box(screen, p)).collect();
     boxes.extend(flats.iter().map(|f| points_box(&f.corners)));
-    let mut depths: Vec<[f64; 2]> = polys.iter().map(|p| depth_range(screen, p)).collect();
+    let mut depths: Vec<[f64; 2]> = (polys.iter().zip(&planes))
+        .map(|(p, plane)| depth_range(screen, p, plane))
+        .collect();
     depths.extend(flats.iter().map(|f| {
         let z = f.corners.iter().map(|c| c.z as f64);
         [
@@ -76,7 +80,7 @@ pub fn meetings(
             z.fold(f64::MIN, f64::max) + 1.0,
         ]
     }));
-    let approx: Vec<PlaneApprox> = polys.iter().map(|p| PlaneApprox::of(&p.plane)).collect();
+    let approx: Vec<PlaneApprox> = planes.iter().map(PlaneApprox::of).collect();
     // Convex parts, made when a pair first needs them.
     let mut parts: Vec<Option<Vec<Vec<Line>>>> = vec![None; polys.len()];
     // Each face's welded vertex ids (distinct, in corner order), made once: every pair asks.
@@ -116,7 +120,7 @@ pub fn meetings(
             let flat = &flats[b - n];
             if !share_an_edge(flat.face, polys[a].face) {
                 let parts_a = parts[a].get_or_insert_with(|| convex_parts(screen, &polys[a]));
-                out.extend(edge_on_meeting(flat, &polys[a], parts_a));
+                out.extend(edge_on_meeting(flat, &polys[a], &planes[a], parts_a));
             }
             return;
         }
@@ -129,10 +133,13 @@ pub fn meetings(
         }
         // Every polygon lies in its plane (`project` splits the others), so the meeting line's
         // side at a corner is the side of the other plane the corner lies on.
-        if !straddles(screen, pb, pa, &approx[a]) || !straddles(screen, pa, pb, &approx[b]) {
+        let (plane_a, plane_b) = (&planes[a], &planes[b]);
+        if !straddles(screen, pb, pa, plane_a, &approx[a])
+            || !straddles(screen, pa, pb, plane_b, &approx[b])
+        {
             return;
         }
-        let line = Line::cut(pa.plane, pb.plane);
+        let line = Line::cut(*plane_a, *plane_b);
         if shared_corners == 1 && apart_beyond_corner(screen, pa, pb, &line) == Some(true) {
             return;
         }
@@ -155,16 +162,16 @@ pub fn meetings(
         }
         if !extent.is_empty() {
             let (fa, fb) = (pa.face.min(pb.face), pa.face.max(pb.face));
-            let planes = if pa.face < pb.face {
-                [pa.plane, pb.plane]
+            let in_face_order = if pa.face < pb.face {
+                [*plane_a, *plane_b]
             } else {
-                [pb.plane, pa.plane]
+                [*plane_b, *plane_a]
             };
             out.push(Meeting {
                 faces: [fa, fb],
-                planes: Some(planes),
+                planes: Some(in_face_order),
                 line,
-                depth: pa.plane,
+                depth: *plane_a,
                 extent,
                 edge_on: false,
             });
@@ -360,15 +367,21 @@ fn apart_beyond_corner(
     Some(direction(ca, i)? != direction(cb, j)?)
 }
 
-/// Where the edge-on face `flat` meets polygon `b` (convex parts `parts`), if they cross.
-fn edge_on_meeting(flat: &FlatFace, b: &ScreenPoly, parts: &[Vec<Line>]) -> Option<Meeting> {
+/// Where the edge-on face `flat` meets polygon `b` (support plane `plane`, convex parts
+/// `parts`), if they cross.
+fn edge_on_meeting(
+    flat: &FlatFace,
+    b: &ScreenPoly,
+    plane: &Plane,
+    parts: &[Vec<Line>],
+) -> Option<Meeting> {
     let c = &flat.corners;
     // The screen line: through the two corners farthest apart along it.
     let (lo, hi) = (c.iter().min()?, c.iter().max()?);
     let line = Line::edge(*lo, *hi)?;
     let carrier = Carrier::new(line.clone());
     // Where b's plane crosses the face's sides in 3D, exactly.
-    let sign = |p: &GridPoint| b.plane.sign_at(*p);
+    let sign = |p: &GridPoint| plane.sign_at(*p);
     let signs: Vec<Ordering> = c.iter().map(sign).collect();
     if !signs.contains(&Ordering::Less) || !signs.contains(&Ordering::Greater) {
         return None;
@@ -383,7 +396,7 @@ fn edge_on_meeting(flat: &FlatFace, b: &ScreenPoly, parts: &[Vec<Line>]) -> Opti
             if (c[i].x, c[i].y) == (c[j].x, c[j].y) {
                 crossings.push(At::Grid([c[i].x, c[i].y]));
             } else {
-                crossings.push(At::Cross(Line::cut(b.plane, plane_along(c[i], c[j]))));
+                crossings.push(At::Cross(Line::cut(*plane, plane_along(c[i], c[j]))));
             }
         }
     }
@@ -399,7 +412,7 @@ fn edge_on_meeting(flat: &FlatFace, b: &ScreenPoly, parts: &[Vec<Line>]) -> Opti
         faces: [flat.face.min(b.face), flat.face.max(b.face)],
         planes: None,
         line,
-        depth: b.plane,
+        depth: *plane,
         extent,
         edge_on: true,
     })
@@ -435,12 +448,11 @@ fn screen_box(screen: &ScreenScene, p: &ScreenPoly) -> [f64; 4] {
     points_box(screen.corners(p))
 }
 
-/// The depth range of the polygon's plane over its corners (a filter): the plane's depth at a
-/// corner, `-(a·x + b·y + d) / c`, in f64 widened by its error bound (each coefficient rounded
+/// The depth range of the polygon's plane `pl` over its corners (a filter): the plane's depth
+/// at a corner, `-(a·x + b·y + d) / c`, in f64 widened by its error bound (each coefficient rounded
 /// once, the products, the sum and the quotient once each: below `8·U` of the terms'
 /// magnitudes over `c`) and one grid unit.
-fn depth_range(screen: &ScreenScene, p: &ScreenPoly) -> [f64; 2] {
-    let pl = &p.plane;
+fn depth_range(screen: &ScreenScene, p: &ScreenPoly, pl: &Plane) -> [f64; 2] {
     let (a, b, c, d) = (
         pl.a as f64,
         pl.b as f64,
@@ -461,11 +473,12 @@ fn depth_range(screen: &ScreenScene, p: &ScreenPoly) -> [f64; 2] {
 /// Do the corners of `p` lie strictly on both sides of `other`'s plane? Exact. A corner that
 /// is also a corner of `other` lies in its plane (every polygon lies exactly in its plane), so
 /// it is skipped: it is where the filter would always fall back to exact arithmetic.
-/// `approx` is `other`'s plane rounded.
+/// `plane` is `other`'s plane, `approx` it rounded.
 fn straddles(
     screen: &ScreenScene,
     p: &ScreenPoly,
     other: &ScreenPoly,
+    plane: &Plane,
     approx: &PlaneApprox,
 ) -> bool {
     let theirs = screen.corners(other);
@@ -474,7 +487,7 @@ fn straddles(
         if theirs.contains(c) {
             continue;
         }
-        match approx.sign_at(&other.plane, *c) {
+        match approx.sign_at(plane, *c) {
             Ordering::Greater => pos = true,
             Ordering::Less => neg = true,
             Ordering::Equal => {}

@@ -157,9 +157,9 @@ pub fn mark_seen(screen: &ScreenScene, pieces: &[Piece], index: &TrackIndex, tra
                     let [pa, pb] = [a, b].map(|p| &screen.polys[p as usize]);
                     let (fa, fb) = (pa.face, pb.face);
                     let key = if fa < fb {
-                        [pa.plane, pb.plane]
+                        [screen.plane(pa), screen.plane(pb)]
                     } else {
-                        [pb.plane, pa.plane]
+                        [screen.plane(pb), screen.plane(pa)]
                     };
                     if let Some(&t) = index.of_cut.get(&key) {
                         let which = (poly.face == fa.max(fb)) as usize;
@@ -748,7 +748,8 @@ pub fn mark_faces_in_front(screen: &ScreenScene, tracks: &mut [Track]) {
         .map(|p| super::intersections::points_box(screen.corners(p)))
         .collect();
     let grid = BoxGrid::holding(&boxes);
-    let mut parts: Vec<Option<Vec<Vec<Line>>>> = vec![None; polys.len()];
+    // Each face's convex parts and plane, made when a track first needs them.
+    let mut parts: Vec<Option<(Vec<Vec<Line>>, Plane)>> = vec![None; polys.len()];
     let mut near: Vec<u32> = Vec::new();
     for track in tracks.iter_mut() {
         grid.entries_near(&track_box(track), &mut near);
@@ -758,13 +759,17 @@ pub fn mark_faces_in_front(screen: &ScreenScene, tracks: &mut [Track]) {
             if track.faces.contains(&poly.face) {
                 continue;
             }
-            let parts = parts[i as usize]
-                .get_or_insert_with(|| super::intersections::convex_parts(screen, poly));
+            let (parts, plane) = parts[i as usize].get_or_insert_with(|| {
+                (
+                    super::intersections::convex_parts(screen, poly),
+                    screen.plane(poly),
+                )
+            });
             // Each convex part's open interior once (the parts are disjoint); outside the
             // track's extent nothing is drawn, so no clipping to it is needed.
             for part in parts.iter() {
                 if let Some(inside) = clip_to_region(&track.carrier, part, false) {
-                    spans.extend(in_front(track, inside, &poly.plane));
+                    spans.extend(in_front(track, inside, plane));
                 }
             }
         }

@@ -99,7 +99,7 @@ impl<'a> DepthOrder<'a> {
         let planes = screen
             .polys
             .iter()
-            .map(|p| DepthPlane::new(&p.plane, &samples))
+            .map(|p| DepthPlane::new(&screen.plane(p), &samples))
             .collect();
         DepthOrder {
             screen,
@@ -132,7 +132,8 @@ impl<'a> DepthOrder<'a> {
             &self.screen.polys[a as usize],
             &self.screen.polys[b as usize],
         );
-        match compare_depth_exact(&pa.plane, &pb.plane, &self.samples, i, j) {
+        let (plane_a, plane_b) = (self.screen.plane(pa), self.screen.plane(pb));
+        match compare_depth_exact(&plane_a, &plane_b, &self.samples, i, j) {
             Ordering::Less => true,
             Ordering::Greater => false,
             Ordering::Equal => {

@@ -63,7 +63,7 @@ pub fn render(screen: &ScreenScene, mut progress: impl FnMut(usize)) -> ZBuffer 
     let planes: Vec<DepthPlane> = screen
         .polys
         .iter()
-        .map(|p| DepthPlane::new(&p.plane, &s))
+        .map(|p| DepthPlane::new(&screen.plane(p), &s))
         .collect();
     let fallbacks = Fallbacks::default();
     let mut crossings: Vec<i64> = Vec::with_capacity(8);
@@ -118,7 +118,8 @@ pub fn render(screen: &ScreenScene, mut progress: impl FnMut(usize)) -> ZBuffer 
                         } else {
                             zb.stats.depth_fallbacks += 1;
                             let other = &screen.polys[cur as usize];
-                            match compare_depth_exact(&poly.plane, &other.plane, &s, i, j) {
+                            let (mine, theirs) = (screen.plane(poly), screen.plane(other));
+                            match compare_depth_exact(&mine, &theirs, &s, i, j) {
                                 Ordering::Less => true,
                                 Ordering::Greater => false,
                                 Ordering::Equal => {
@@ -155,6 +156,7 @@ impl ZBuffer {
     pub fn normalized_depth(&self, screen: &ScreenScene) -> Vec<f64> {
         let s = Samples::new(self.width, self.height);
         let w = self.width as usize;
+        let planes = screen.planes();
         self.poly
             .iter()
             .enumerate()
@@ -163,7 +165,7 @@ impl ZBuffer {
                     1.0
                 } else {
                     let (i, j) = ((idx % w) as i64, (idx / w) as i64);
-                    let z = depth_ndc(&screen.polys[p as usize].plane, &s, i, j);
+                    let z = depth_ndc(&planes[p as usize], &s, i, j);
                     ((z + 1.0) / 2.0).clamp(0.0, 1.0)
                 }
             })

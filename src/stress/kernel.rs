@@ -64,12 +64,10 @@ pub fn polygons(screen: &ScreenScene) -> Vec<GridPolygon> {
                 .iter()
                 .map(|c| [coordinate(c.x), coordinate(c.y)])
                 .collect(),
-            plane: [
-                big(p.plane.a),
-                big(p.plane.b),
-                big(p.plane.c),
-                big(p.plane.d),
-            ],
+            plane: {
+                let plane = screen.plane(p);
+                [big(plane.a), big(plane.b), big(plane.c), big(plane.d)]
+            },
         })
         .collect()
 }

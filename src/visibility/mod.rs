@@ -132,6 +132,7 @@ pub(crate) fn pieces_of(screen: &ScreenScene, polys: &[u32]) -> Vec<Piece> {
 fn pieces_of_polygon(screen: &ScreenScene, poly: u32) -> SmallVec<[Piece; 1]> {
     let p = &screen.polys[poly as usize];
     let pts = screen.corners(p);
+    let plane = screen.plane(p);
     let n = pts.len();
     // Back faces seen from behind run clockwise on screen: walk them backwards, the k-th
     // side of the walk running along outline side n - 2 - k (mod n) the other way.
@@ -150,7 +151,7 @@ fn pieces_of_polygon(screen: &ScreenScene, poly: u32) -> SmallVec<[Piece; 1]> {
         && whole.len() == n
     {
         // Convex (the common case): the polygon itself, every side an outline side.
-        return smallvec::smallvec![Piece::from_convex(poly, p.plane, &ccw, outline)];
+        return smallvec::smallvec![Piece::from_convex(poly, plane, &ccw, outline)];
     }
     pieces
         .iter()
@@ -165,7 +166,7 @@ fn pieces_of_polygon(screen: &ScreenScene, poly: u32) -> SmallVec<[Piece; 1]> {
                     Boundary::Diagonal { poly }
                 }
             };
-            Piece::from_convex(poly, p.plane, &corners, side)
+            Piece::from_convex(poly, plane, &corners, side)
         })
         .collect()
 }
@@ -210,7 +211,7 @@ pub(crate) fn screen_of_polygons(polys: impl IntoIterator<Item = Vec<GridPoint>>
     };
     for (k, pts) in polys.into_iter().enumerate() {
         let start = s.points.len() as u32;
-        let plane = crate::exact::Plane::of_polygon(&pts).expect("a plane");
+        crate::exact::Plane::of_polygon(&pts).expect("a plane");
         s.points.extend(&pts);
         s.polys.push(crate::project::ScreenPoly {
             face: k as u32,
@@ -219,7 +220,6 @@ pub(crate) fn screen_of_polygons(polys: impl IntoIterator<Item = Vec<GridPoint>>
             start,
             len: pts.len() as u32,
             front: crate::exact::twice_signed_area(&pts).is_gt(),
-            plane,
         });
     }
     s

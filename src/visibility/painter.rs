@@ -80,7 +80,7 @@ mod tests {
                 .zip(zs)
                 .map(|(&(x, y), &z)| GridPoint { x, y, z })
                 .collect::<Vec<_>>();
-            let plane = Plane::of_polygon(&pts).unwrap();
+            Plane::of_polygon(&pts).unwrap();
             s.points.extend(pts);
             s.polys.push(ScreenPoly {
                 face: k as u32,
@@ -88,7 +88,6 @@ mod tests {
                 mesh: 0,
                 start,
                 len: 3,
-                plane,
                 front: true,
             });
         }

@@ -226,7 +226,7 @@ pub fn screen_polys(screen: &ScreenScene) -> Vec<Poly> {
         .iter()
         .map(|p| Poly {
             id: p.id,
-            plane: p.plane,
+            plane: screen.plane(p),
             pts: screen.corners(p).iter().map(|c| [c.x, c.y]).collect(),
         })
         .collect()

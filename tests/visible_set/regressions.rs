@@ -129,13 +129,13 @@ fn sliver_scene() -> ScreenScene {
                 z: z.into(),
             }));
         let pts = &screen.points[start as usize..];
+        assert!(Plane::of_polygon(pts).is_some(), "a polygon with a plane");
         screen.polys.push(ScreenPoly {
             face: face as u32,
             id,
             mesh: 0,
             start,
             len: corners.len() as u32,
-            plane: Plane::of_polygon(pts).unwrap(),
             front,
         });
     }
