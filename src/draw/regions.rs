@@ -172,6 +172,22 @@ pub struct Vertices {
     /// Per piece, per vertex: the id of its exact point; two vertices have the same id if and
     /// only if they are the same point (decided exactly).
     pub ids: PerVertex<u32>,
+    /// Per piece, per vertex k: the piece that shares edge k (from vertex k to vertex k + 1)
+    /// whole, its own edge running the other way between the same two points, or
+    /// [`Vertices::ALONE`]; flat, in the order of `ids` (edge k of piece a is number
+    /// `ids.first(a) + k`). Found once for the regions, the outline and the seams alike.
+    pub partners: Vec<u32>,
+}
+
+impl Vertices {
+    /// No piece shares the edge whole.
+    pub const ALONE: u32 = u32::MAX;
+
+    /// The partners of piece a's edges, in edge order (see [`Vertices::partners`]).
+    pub fn partners_of(&self, a: usize) -> &[u32] {
+        let first = self.ids.first(a);
+        &self.partners[first..first + self.ids[a].len()]
+    }
 }
 
 /// One value per vertex of a list of pieces, in one flat list (no allocation per piece: a
@@ -267,6 +283,7 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
     let mut out = Vertices {
         pixels: PerVertex::with_capacity(pieces.len(), vertex_count),
         ids: PerVertex::with_capacity(pieces.len(), vertex_count),
+        partners: Vec::new(),
     };
     let mut next = 0u32;
     // One piece's named vertices (reused: the piece is pushed whole once named, since
@@ -310,7 +327,26 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
         out.pixels.push_piece(pixels.iter().copied());
         out.ids.push_piece(ids.iter().copied());
     }
+    out.partners = edge_partners(&out.ids);
     out
+}
+
+/// [`Vertices::partners`] of pieces with vertex ids `ids`: the edges that run between the same
+/// two points the other way ([`cancelling_pairs`]). Disjoint pieces share an edge whole with
+/// at most one other piece (a third with either edge would overlap the one with the same).
+fn edge_partners(ids: &PerVertex<u32>) -> Vec<u32> {
+    let mut partners = vec![Vertices::ALONE; ids.vertex_count()];
+    // Edges named by their flat number: fewer than 2^32, as the vertex ids are.
+    let edges = (0..ids.len()).flat_map(|a| {
+        let (v, first) = (&ids[a], ids.first(a));
+        (0..v.len()).map(move |k| ((v[k], v[(k + 1) % v.len()]), (first + k) as u32))
+    });
+    for (e, f) in cancelling_pairs(edges) {
+        let (e, f) = (e as usize, f as usize);
+        partners[e] = ids.piece_of(f) as u32;
+        partners[f] = ids.piece_of(e) as u32;
+    }
+    partners
 }
 
 /// Vertices by their f64 points ([`Piece::point`]: coordinates within an error bound of the
@@ -439,8 +475,8 @@ struct Edge {
     line: usize,
 }
 
-/// The regions of the union of `pieces[members]` (disjoint), ordered by their outer rings'
-/// smallest vertex. See the module docs.
+/// The regions of the union of `pieces[members]` (disjoint; `members` ascending), ordered by
+/// their outer rings' smallest vertex. See the module docs.
 fn merge(pieces: &[Piece], vertices: &Vertices, members: &[usize]) -> Vec<Merged> {
     if let [only] = members {
         // A strictly convex piece: every vertex is a corner.
@@ -548,27 +584,26 @@ impl Group<'_> {
     /// lie inside an edge are those of pieces with such an edge too (the first and the last
     /// piece around a T-junction vertex have one), found near it through the pieces' bounds.
     fn boundary(&self) -> (Vec<Edge>, UnionFind) {
-        let (pieces, ids, members) = (self.pieces, &self.vertices.ids, self.members);
+        let (pieces, members) = (self.pieces, self.members);
+        debug_assert!(members.is_sorted(), "members ascend");
         let mut components = UnionFind::new(members.len());
-        // Edge k of piece i is flat edge first[i] + k.
+        // Edge k of member i is edge first[i] + k of the group; whole: shared whole with
+        // another member (found by bisection: members ascend).
         let mut first = Vec::with_capacity(members.len() + 1);
-        let mut owner = Vec::new();
+        let mut whole = Vec::new();
         for (i, &m) in members.iter().enumerate() {
-            first.push(owner.len());
-            owner.extend(std::iter::repeat_n(i, ids[m].len()));
+            first.push(whole.len());
+            for &b in self.vertices.partners_of(m) {
+                let j = (b != Vertices::ALONE)
+                    .then(|| members.binary_search(&(b as usize)).ok())
+                    .flatten();
+                if let Some(j) = j {
+                    components.union(i, j);
+                }
+                whole.push(j.is_some());
+            }
         }
-        first.push(owner.len());
-        let ends = |f: usize| {
-            let (i, k) = (owner[f], f - first[owner[f]]);
-            let v = &ids[members[i]];
-            (v[k], v[(k + 1) % v.len()])
-        };
-        let mut whole = vec![false; owner.len()];
-        for (f, b) in cancelling_pairs((0..owner.len()).map(|f| (ends(f), f))) {
-            whole[f] = true;
-            whole[b] = true;
-            components.union(owner[f], owner[b]);
-        }
+        first.push(whole.len());
         let open = |i: usize| whole[first[i]..first[i + 1]].iter().any(|w| !w);
         let at = |i: usize, k: usize| At {
             piece: members[i],
@@ -683,9 +718,7 @@ impl Group<'_> {
 
 /// The pairs of edges, given as ((from, to), name) with distinct names, that run between the
 /// same two points in opposite directions: each edge pairs with at most one, in name order.
-pub(crate) fn cancelling_pairs<E: Copy + Ord>(
-    edges: impl Iterator<Item = ((u32, u32), E)>,
-) -> Vec<(E, E)> {
+fn cancelling_pairs<E: Copy + Ord>(edges: impl Iterator<Item = ((u32, u32), E)>) -> Vec<(E, E)> {
     // (the two ends, smaller first; whether the edge runs from the larger; the edge)
     let mut keyed: Vec<(u64, bool, E)> = edges
         .map(|((a, b), e)| (((a.min(b) as u64) << 32) | a.max(b) as u64, a > b, e))

@@ -12,7 +12,7 @@
 //! same f64 pixel, so rounded bits do not name a point).
 //! Boundaries against nothing (the silhouette) or between pieces of one group are never returned.
 
-use super::regions::{UnionFind, Vertices, cancelling_pairs};
+use super::regions::{UnionFind, Vertices};
 use crate::exact::polygon::Piece;
 use crate::visibility::grid::for_each_near_edges;
 use std::cmp::Ordering;
@@ -53,8 +53,8 @@ impl SharedEdge {
 /// vertex in every piece.
 ///
 /// Two passes. Whole edges first: an edge of one piece whose ends are, the other way round,
-/// the ends of an edge of another is shared whole (sorting the edges by their ends' vertex ids
-/// finds them; this is most of a mesh). Then the edges
+/// the ends of an edge of another is shared whole ([`Vertices::partners`]; this is most of a
+/// mesh). Then the edges
 /// left, where T-junctions and occlusion boundaries are: an edge of another piece lies on the
 /// same line, decided exactly, and the part they share runs between the ends of each that lie
 /// in the other piece.
@@ -68,36 +68,20 @@ pub fn shared_edges(
     let (pixels, ids) = (&vertices.pixels, &vertices.ids);
     // Edge k of piece a is edge `ids.first(a) + k` of all.
     let edge = |a: usize, k: usize| ids.first(a) + k;
-    let ends = |a: usize, k: usize| {
-        let v = &ids[a];
-        (v[k], v[(k + 1) % v.len()])
-    };
-    // Per edge: the edge of another piece it is shared whole with, the other way round (pairs
-    // found by sorting the edges' end ids: no hash map of every edge alive while the segments
-    // are made).
-    const ALONE: usize = usize::MAX;
-    let mut partner = vec![ALONE; ids.vertex_count()];
-    let all_edges = (0..ids.len()).flat_map(|a| (0..ids[a].len()).map(move |k| (a, k)));
-    for (e, f) in cancelling_pairs(all_edges.map(|(a, k)| (ends(a, k), edge(a, k)))) {
-        partner[e] = f;
-        partner[f] = e;
-    }
-    let whole: Vec<bool> = partner.iter().map(|&f| f != ALONE).collect();
+    // Per edge: shared whole with another piece, the other way round (`Vertices::partners`).
+    let whole: Vec<bool> = (vertices.partners.iter())
+        .map(|&b| b != Vertices::ALONE)
+        .collect();
     let mut out = Vec::new();
     for a in 0..pieces.len() {
         let n = ids[a].len();
-        for k in 0..n {
-            let f = partner[edge(a, k)];
-            if f == ALONE {
-                continue;
-            }
-            let b = ids.piece_of(f);
-            if a < b && group(a) != group(b) {
+        for (k, &b) in vertices.partners_of(a).iter().enumerate() {
+            let b = b as usize;
+            if b != Vertices::ALONE as usize && a < b && group(a) != group(b) {
                 out.push(SharedEdge::new([a, b], [(a, k), (a, (k + 1) % n)], (a, k)));
             }
         }
     }
-    drop(partner);
     // Two collinear segments sharing a part have an end of one on the other: the pairs of
     // pieces where one has a vertex on an edge of the other not shared whole, both ways.
     let whole_of = |a: usize| &whole[edge(a, 0)..edge(a, 0) + ids[a].len()];
