@@ -54,10 +54,9 @@ impl SharedEdge {
 ///
 /// Two passes. Whole edges first: an edge of one piece whose ends are, the other way round,
 /// the ends of an edge of another is shared whole ([`Vertices::partners`]; this is most of a
-/// mesh). Then the edges
-/// left, where T-junctions and occlusion boundaries are: an edge of another piece lies on the
-/// same line, decided exactly, and the part they share runs between the ends of each that lie
-/// in the other piece.
+/// mesh). Then the edges left, where T-junctions and occlusion boundaries are: an edge of
+/// another piece lies on the same line, decided exactly, and the part they share runs between
+/// the ends of each that lie in the other piece.
 ///
 /// [`shared_vertices`]: super::regions::shared_vertices
 pub fn shared_edges(
