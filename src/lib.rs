@@ -61,6 +61,7 @@ pub mod draw;
 pub mod exact;
 pub mod grade;
 pub mod lines;
+pub(crate) mod memory;
 pub mod methods;
 pub mod output;
 pub mod paint;

@@ -259,7 +259,10 @@ pub fn compute(
         Engine::Object(strategy) => {
             let paints = options.paints;
             let translucent = |k: u32| !paints[k as usize].is_opaque();
-            Computed::Visible(strategy.visible_set(screen, &translucent, report))
+            let visible = strategy.visible_set(screen, &translucent, report);
+            // The strategy's working pieces are gone: their room goes back before drawing.
+            crate::memory::give_back_after(screen.polys.len());
+            Computed::Visible(visible)
         }
     }
 }
