@@ -67,10 +67,8 @@ pub fn shared_edges(
     let (pixels, ids) = (&vertices.pixels, &vertices.ids);
     // Edge k of piece a is edge `ids.first(a) + k` of all.
     let edge = |a: usize, k: usize| ids.first(a) + k;
-    // Per edge: shared whole with another piece, the other way round (`Vertices::partners`).
-    let whole: Vec<bool> = (vertices.partners.iter())
-        .map(|&b| b != Vertices::ALONE)
-        .collect();
+    // Edge e (of all): shared whole with another piece, the other way round.
+    let whole = |e: usize| vertices.partners[e] != Vertices::ALONE;
     let mut out = Vec::new();
     for a in 0..pieces.len() {
         let n = ids[a].len();
@@ -83,8 +81,7 @@ pub fn shared_edges(
     }
     // Two collinear segments sharing a part have an end of one on the other: the pairs of
     // pieces where one has a vertex on an edge of the other not shared whole, both ways.
-    let whole_of = |a: usize| &whole[edge(a, 0)..edge(a, 0) + ids[a].len()];
-    let open = |a: usize| whole_of(a).iter().any(|w| !w);
+    let open = |a: usize| vertices.partners_of(a).contains(&Vertices::ALONE);
     // (earlier piece, later piece) of every pair, then sorted: pieces in order, partners
     // ascending.
     let mut pairs: Vec<(u32, u32)> = Vec::new();
@@ -93,7 +90,7 @@ pub fn shared_edges(
         pieces.len(),
         points,
         open,
-        |a, k| !whole[edge(a, k)],
+        |a, k| !whole(edge(a, k)),
         |a, near| {
             for &b in near {
                 let (first, second) = if a < b { (a, b) } else { (b, a) };
@@ -107,9 +104,9 @@ pub fn shared_edges(
         if group(b) == group(a) {
             continue;
         }
-        for k in (0..pieces[a].len()).filter(|&k| !whole[edge(a, k)]) {
+        for k in (0..pieces[a].len()).filter(|&k| !whole(edge(a, k))) {
             let (pa, pb) = ((a, &pieces[a]), (b, &pieces[b]));
-            if let Some(ends) = shared_part(pa, k, pb, whole_of(b)) {
+            if let Some(ends) = shared_part(pa, k, pb, vertices.partners_of(b)) {
                 out.push(SharedEdge::new([a, b], ends, (a, k)));
                 // Two disjoint convex pieces share at most one segment.
                 break;
@@ -212,13 +209,14 @@ fn union_along_line(segments: impl Iterator<Item = [[f64; 2]; 2]>) -> Vec<[[f64;
 }
 
 /// The segment of positive length that edge k of piece `a` (index `ia`) shares with an edge of
-/// piece `b` (index `ib`) not shared whole elsewhere (`b_whole`), its ends as (piece index,
-/// vertex) of the pieces' vertices. `a` and `b` have disjoint interiors.
+/// piece `b` (index `ib`) not shared whole elsewhere (`b_partners`, its edges' partners:
+/// [`Vertices::partners`]), its ends as (piece index, vertex) of the pieces' vertices. `a` and
+/// `b` have disjoint interiors.
 fn shared_part(
     (ia, a): (usize, &Piece),
     k: usize,
     (ib, b): (usize, &Piece),
-    b_whole: &[bool],
+    b_partners: &[u32],
 ) -> Option<[(usize, usize); 2]> {
     let (na, nb) = (a.len(), b.len());
     let (line, approx) = (a.line(k), a.line_approx(k));
@@ -227,7 +225,8 @@ fn shared_part(
     let on: Vec<bool> = (0..nb)
         .map(|v| b.vertex_line_sign_with(v, line, &approx) == Ordering::Equal)
         .collect();
-    let j = (0..nb).find(|&j| !b_whole[j] && on[j] && on[(j + 1) % nb])?;
+    let alone = |j: usize| b_partners[j] == Vertices::ALONE;
+    let j = (0..nb).find(|&j| alone(j) && on[j] && on[(j + 1) % nb])?;
     // The shared part of the two collinear edges runs between the ends of each that lie in the
     // other piece (closed); an end of b that is an end of a (decided exactly) counts once.
     // Edges with both pieces on one side of the line meet at most at a point: no segment.

@@ -449,8 +449,8 @@ fn screen_box(screen: &ScreenScene, p: &ScreenPoly) -> [f64; 4] {
 }
 
 /// The depth range of the polygon's plane `pl` over its corners (a filter): the plane's depth
-/// at a corner, `-(a·x + b·y + d) / c`, in f64 widened by its error bound (each coefficient rounded
-/// once, the products, the sum and the quotient once each: below `8·U` of the terms'
+/// at a corner, `-(a·x + b·y + d) / c`, in f64 widened by its error bound (each coefficient
+/// rounded once, the products, the sum and the quotient once each: below `8·U` of the terms'
 /// magnitudes over `c`) and one grid unit.
 fn depth_range(screen: &ScreenScene, p: &ScreenPoly, pl: &Plane) -> [f64; 2] {
     let (a, b, c, d) = (
