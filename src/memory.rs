@@ -7,11 +7,13 @@
 //! `malloc_trim` hands the free pages back and keeps what is in use. Elsewhere (other
 //! allocators or systems) nothing is done.
 //!
-//! Called once, between the visible set and the drawing (`render::compute`): on the 1M-sphere
-//! file 215 MB of the visible set's freed room was still resident there (VmRSS 724 -> 509 MB
-//! by the trim). Trimming after every large strip and stage of the drawing as well did not
-//! lower the process's peak further and cost igea's render 20 % more system time (the pages
-//! handed back are faulted in again by the next allocations).
+//! Called between the visible set and the drawing (`render::compute`): on the 1M-sphere file
+//! 215 MB of the visible set's freed room was still resident there (VmRSS 724 -> 509 MB by the
+//! trim); and while the strips' visible pieces are joined into one list
+//! (`strips::solve_strips`), every few strips, where the strips' room and the whole list were
+//! the process's peak (481 -> 682 MB on that sphere). Trimming after every large strip and
+//! stage of the drawing as well did not lower the peak further and cost igea's render 20 %
+//! more system time (the pages handed back are faulted in again by the next allocations).
 
 /// A stage over at least this many pieces or polygons (a few hundred bytes each: about 10 MB)
 /// frees enough to be worth handing back; below it the allocator's walk costs more than it

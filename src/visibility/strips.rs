@@ -244,16 +244,27 @@ pub(crate) fn solve_strips<C: Counters>(
     }
     let fallbacks: u64 = solved.iter().map(|s| s.1).sum();
     add_fallbacks(fallbacks.saturating_sub(own));
-    // The list grows by exactly each strip, which is freed once moved: the strips and the whole
-    // list are never both in memory (glibc grows a large allocation by remapping its pages, not
-    // by copying them).
-    let mut pieces = Vec::new();
+    // The whole list is made at its size, then filled strip by strip, each strip freed once
+    // moved and its room handed back to the system every few strips: the strips' room, left
+    // resident in the allocator's arenas, and the whole list were the process's peak on a
+    // million triangles (481 -> 682 MB while joining, the visible pieces being 189 MB).
+    let total = solved
+        .iter()
+        .filter_map(|s| s.0.as_ref().ok())
+        .map(|s| s.0.len())
+        .sum();
+    let mut pieces = Vec::with_capacity(total);
     let mut counters = C::default();
+    let mut freed = 0;
     // Every strip is `Ok` (checked above).
     for (p, c) in solved.into_iter().filter_map(|s| s.0.ok()) {
-        pieces.reserve_exact(p.len());
+        freed += p.len();
         pieces.extend(p);
         counters.add(&c);
+        if freed >= crate::memory::LARGE {
+            crate::memory::give_back_after(freed);
+            freed = 0;
+        }
     }
     Ok((pieces, counters))
 }
