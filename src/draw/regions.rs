@@ -37,10 +37,12 @@ use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
 use crate::visibility::grid::for_each_near_edges;
 use glam::DVec3;
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxBuildHasher, FxHashMap};
 use smallvec::SmallVec;
 use std::cmp::Ordering;
 use std::collections::BTreeMap;
+use std::collections::hash_map::Entry;
+use std::hash::BuildHasher;
 
 /// One drawable region of a group.
 #[derive(Clone, Debug, PartialEq)]
@@ -130,15 +132,8 @@ pub fn surfaces<P: Eq + std::hash::Hash>(
         .filter(|s| *s > 0.0)
         .unwrap_or(1.0);
     let q = |v: f64| (v * (1u64 << 20) as f64).round() as i64;
-    // Room for a label per polygon from the start: growing by doubling held the old table and
-    // the new one at once (on a million faces of a curved surface, each its own label, 58 and
-    // 117 MB), and untouched room is never resident.
-    let mut buckets: FxHashMap<(P, [i64; 4]), u32> =
-        FxHashMap::with_capacity_and_hasher(screen.polys.len(), Default::default());
-    let mut labels = Vec::with_capacity(screen.polys.len());
-    let mut next = 0u32;
-    for (index, poly) in screen.polys.iter().enumerate() {
-        let face = &scene.faces[poly.face as usize];
+    let key = |index: usize| {
+        let face = &scene.faces[screen.polys[index].face as usize];
         let corners = scene.face_corners(face);
         let p0 = scene.positions[corners[0] as usize];
         let mut n = newell_normal(corners.iter().map(|&i| scene.positions[i as usize])).normalize();
@@ -147,11 +142,48 @@ pub fn surfaces<P: Eq + std::hash::Hash>(
             n = -n;
         }
         let d = n.dot(p0) / size;
-        let key = (paint(index), [q(n.x), q(n.y), q(n.z), q(d)]);
-        let label = *buckets.entry(key).or_insert_with(|| {
-            next += 1;
-            next - 1
-        });
+        (paint(index), [q(n.x), q(n.y), q(n.z), q(d)])
+    };
+    labels_by_key(screen.polys.len(), key, |k| FxBuildHasher.hash_one(k))
+}
+
+/// Labels for items `0..n` by `key(index)`: equal keys, equal labels, numbered in order of first
+/// appearance. Keeps the first item of each key by the key's `hash` (16 bytes an item, where a
+/// table of the keys took 64 in [`surfaces`]: a curved surface of a million faces is a million
+/// labels, 134 MB of table), comparing the full keys on every hit (`key` is recomputed for the
+/// first item); a key whose hash another key holds (possible, if never seen) is labelled
+/// through a table of such keys. Room for every item from the start: growing by doubling
+/// holds the old table and the new one at once, and untouched room is never resident.
+fn labels_by_key<K: Eq + std::hash::Hash>(
+    n: usize,
+    key: impl Fn(usize) -> K,
+    hash: impl Fn(&K) -> u64,
+) -> Vec<u32> {
+    let mut first_of_hash: FxHashMap<u64, u32> =
+        FxHashMap::with_capacity_and_hasher(n, Default::default());
+    let mut collided: FxHashMap<K, u32> = FxHashMap::default();
+    let mut labels: Vec<u32> = Vec::with_capacity(n);
+    let mut next = 0u32;
+    let mut new_label = || {
+        next += 1;
+        next - 1
+    };
+    for index in 0..n {
+        let k = key(index);
+        let label = match first_of_hash.entry(hash(&k)) {
+            Entry::Vacant(e) => {
+                e.insert(index as u32);
+                new_label()
+            }
+            Entry::Occupied(e) => {
+                let first = *e.get() as usize;
+                if key(first) == k {
+                    labels[first]
+                } else {
+                    *collided.entry(k).or_insert_with(&mut new_label)
+                }
+            }
+        };
         labels.push(label);
     }
     labels
@@ -283,7 +315,11 @@ impl<T> std::ops::Index<usize> for PerVertex<T> {
 /// if it turns out to be a grid point, with the map, where it is entered when it is new: so a
 /// crossing and a corner at the same point share an id whichever comes first.
 pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
-    let mut at_grid_point: FxHashMap<[i64; 2], ([f64; 2], u32)> = FxHashMap::default();
+    // Each exact point is entered once, where it is first named, as that (piece, vertex): a
+    // grid point in `at_grid_point`, any other point in `near`. A later vertex of the point
+    // takes its pixel and id from `out`. (Entering every vertex, with its pixel and id, made
+    // these tables a third of the drawing's memory on a million triangles.)
+    let mut at_grid_point: FxHashMap<[i64; 2], (u32, u32)> = FxHashMap::default();
     let mut near = NearVertices::default();
     let vertex_count = pieces.iter().map(Piece::len).sum();
     let mut out = Vertices {
@@ -292,15 +328,23 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
         partners: Vec::new(),
     };
     let mut next = 0u32;
-    // One piece's named vertices (reused: the piece is pushed whole once named, since
-    // `near.find` reads only the pieces before it).
-    let (mut pixels, mut ids) = (Vec::new(), Vec::new());
+    // One piece's named vertices and the ones named first here that are no grid points
+    // (reused: the piece is pushed whole once named, since the tables read only the pieces
+    // before it).
+    let (mut pixels, mut ids, mut new_off_grid) = (Vec::new(), Vec::new(), Vec::new());
     for (a, pa) in pieces.iter().enumerate() {
         pixels.clear();
         ids.clear();
+        new_off_grid.clear();
+        let named = |(b, v): (u32, u32)| {
+            (
+                out.pixels[b as usize][v as usize],
+                out.ids[b as usize][v as usize],
+            )
+        };
         for k in 0..pa.len() {
             let (known, grid_point) = match pa.corner(k) {
-                Some(g) => (at_grid_point.get(&g).copied(), Some(g)),
+                Some(g) => (at_grid_point.get(&g).copied().map(named), Some(g)),
                 None => {
                     let same = near.find(pa.point(k), |b, v| {
                         pa.same_vertex(k, &pieces[b], v)
@@ -310,24 +354,26 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
                         Some(named) => (Some(named), None),
                         None => {
                             let g = grid_point_of(pa, k);
-                            (g.and_then(|g| at_grid_point.get(&g).copied()), g)
+                            (g.and_then(|g| at_grid_point.get(&g).copied().map(named)), g)
                         }
                     }
                 }
             };
             let (p, id) = known.unwrap_or_else(|| {
                 next += 1;
-                let named = (vertex_pixel(pa, k, s), next - 1);
-                if let Some(g) = grid_point {
-                    at_grid_point.insert(g, named);
+                match grid_point {
+                    Some(g) => {
+                        at_grid_point.insert(g, (a as u32, k as u32));
+                    }
+                    None => new_off_grid.push(k),
                 }
-                named
+                (vertex_pixel(pa, k, s), next - 1)
             });
             pixels.push(p);
             ids.push(id);
         }
         // Entered after the piece: a piece's own vertices are distinct points.
-        for k in 0..pa.len() {
+        for &k in &new_off_grid {
             near.insert(pa.point(k), a, k);
         }
         out.pixels.push_piece(pixels.iter().copied());
@@ -362,7 +408,12 @@ fn edge_partners(ids: &PerVertex<u32>) -> Vec<u32> {
 /// larger bound (none: piece vertices are refined below it) goes to a list every query reads.
 #[derive(Default)]
 struct NearVertices {
-    cells: FxHashMap<[i64; 2], Vec<(u32, u32)>>,
+    /// Per cell, its last entry (an index into `entries`).
+    cells: FxHashMap<[i64; 2], u32>,
+    /// (piece, vertex, the cell's entry before it or [`NearVertices::END`]): one list per
+    /// cell, threaded through one flat list (most cells hold one vertex: a list per cell cost
+    /// an allocation each).
+    entries: Vec<(u32, u32, u32)>,
     loose: Vec<(u32, u32)>,
 }
 
@@ -370,6 +421,9 @@ impl NearVertices {
     /// Twice the largest distance between two f64 points of one exact point: a query box
     /// (that distance each way) meets two cells in each direction, rarely three.
     const CELL: f64 = 4.0 * Piece::POINT_ERROR_MAX;
+
+    /// The end of a cell's list.
+    const END: u32 = u32::MAX;
 
     fn cell(v: f64) -> i64 {
         (v / Self::CELL).floor() as i64
@@ -381,14 +435,25 @@ impl NearVertices {
     }
 
     fn insert(&mut self, point: [f64; 3], piece: usize, vertex: usize) {
-        let entry = (piece as u32, vertex as u32);
+        let (piece, vertex) = (piece as u32, vertex as u32);
         if Self::bounded(point) {
             let [x, y, _] = point;
             let key = [Self::cell(x), Self::cell(y)];
-            self.cells.entry(key).or_default().push(entry);
+            let index = self.entries.len() as u32;
+            let before = self.cells.insert(key, index).unwrap_or(Self::END);
+            self.entries.push((piece, vertex, before));
         } else {
-            self.loose.push(entry);
+            self.loose.push((piece, vertex));
         }
+    }
+
+    /// The entries of the cell whose list ends at `last`, last entered first.
+    fn cell_entries(&self, mut last: u32) -> impl Iterator<Item = (u32, u32)> + '_ {
+        std::iter::from_fn(move || {
+            let &(piece, vertex, before) = self.entries.get(last as usize)?;
+            last = before;
+            Some((piece, vertex))
+        })
     }
 
     /// The first `Some` of `same(piece, vertex)` over the vertices that may be `point`; every
@@ -398,13 +463,19 @@ impl NearVertices {
         point: [f64; 3],
         mut same: impl FnMut(usize, usize) -> Option<T>,
     ) -> Option<T> {
-        let mut try_all =
-            |list: &[(u32, u32)]| list.iter().find_map(|&(b, v)| same(b as usize, v as usize));
-        if let Some(t) = try_all(&self.loose) {
+        let mut try_all = |list: &mut dyn Iterator<Item = (u32, u32)>| {
+            for (b, v) in list {
+                if let Some(t) = same(b as usize, v as usize) {
+                    return Some(t);
+                }
+            }
+            None
+        };
+        if let Some(t) = try_all(&mut self.loose.iter().copied()) {
             return Some(t);
         }
         if !Self::bounded(point) {
-            return self.cells.values().find_map(|list| try_all(list));
+            return try_all(&mut self.entries.iter().map(|&(b, v, _)| (b, v)));
         }
         let [x, y, _] = point;
         // Both bounds, and a little for the rounding of x - reach and x + reach.
@@ -413,7 +484,10 @@ impl NearVertices {
         let (y0, y1) = (Self::cell(y - reach), Self::cell(y + reach));
         (x0..=x1)
             .flat_map(|cx| (y0..=y1).map(move |cy| [cx, cy]))
-            .find_map(|key| self.cells.get(&key).and_then(|list| try_all(list)))
+            .find_map(|key| {
+                let &last = self.cells.get(&key)?;
+                try_all(&mut self.cell_entries(last))
+            })
     }
 }
 
@@ -926,6 +1000,39 @@ pub(super) mod tests {
             poly,
             side: side as u32,
         })
+    }
+
+    /// Labels by key are numbered by first appearance, equal exactly for equal keys, whatever
+    /// the hashes: with the real hash, with one that maps every key to a few values (keys
+    /// sharing a hash go through the collision table), and with one value for all.
+    #[test]
+    fn labels_by_key_are_by_key_whatever_the_hash_collides() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let keys: Vec<(u8, [i64; 2])> = (0..3000)
+            .map(|_| {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                (
+                    (state % 5) as u8,
+                    [(state >> 8) as i64 % 7, (state >> 16) as i64 % 11],
+                )
+            })
+            .collect();
+        let mut expected = Vec::new();
+        let mut seen: BTreeMap<(u8, [i64; 2]), u32> = BTreeMap::new();
+        for k in &keys {
+            let next = seen.len() as u32;
+            expected.push(*seen.entry(*k).or_insert(next));
+        }
+        assert!(seen.len() > 100, "the keys repeat and differ");
+        let key = |i: usize| keys[i];
+        let real = labels_by_key(keys.len(), key, |k| FxBuildHasher.hash_one(k));
+        let few = labels_by_key(keys.len(), key, |k| FxBuildHasher.hash_one(k) % 3);
+        let one = labels_by_key(keys.len(), key, |_| 7);
+        assert_eq!(real, expected);
+        assert_eq!(few, expected);
+        assert_eq!(one, expected);
     }
 
     /// A 2^53-pixel-wide image: pixels are grid units up to an offset ([`to_grid`]). (No
