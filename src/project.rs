@@ -40,7 +40,8 @@ pub enum CullMode {
     Off,
 }
 
-/// A face on screen. Its corners are `ScreenScene::points[start..start + len]`.
+/// A face on screen. Its corners are `ScreenScene::corner_points[start..start + len]`
+/// ([`ScreenScene::corners`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ScreenPoly {
     /// Index into `Scene::faces`.
@@ -49,7 +50,7 @@ pub struct ScreenPoly {
     pub id: FaceId,
     /// Index into `Scene::meshes` of the face's mesh.
     pub mesh: u32,
-    /// Index of its first corner in `ScreenScene::points` (and `sides`).
+    /// Index of its first corner in `ScreenScene::corner_points` (and `sides`).
     pub start: u32,
     /// Number of corners.
     pub len: u32,
@@ -122,14 +123,22 @@ pub enum Orientation {
     Cw,
 }
 
+/// A polygon's corners, copied out of [`ScreenScene::grid_points`].
+pub type Corners = smallvec::SmallVec<[GridPoint; 4]>;
+
 /// All faces of a scene on screen, for one camera.
 #[derive(Clone, Debug, Default)]
 pub struct ScreenScene {
     /// The polygons, in face order.
     pub polys: Vec<ScreenPoly>,
-    /// Every polygon's corners, one run per polygon.
-    pub points: Vec<GridPoint>,
-    /// `sides[k]`: where the side from `points[k]` to the next corner of its polygon comes from.
+    /// The grid points that corners name: each scene vertex's snap once, whichever faces share
+    /// it (a mesh's vertex is the corner of six triangles on average), then the points
+    /// clipping made.
+    pub grid_points: Vec<GridPoint>,
+    /// Every polygon's corners, one run per polygon: indices into `grid_points`.
+    pub corner_points: Vec<u32>,
+    /// `sides[k]`: where the side from corner k (of `corner_points`) to the next corner of its
+    /// polygon comes from.
     pub sides: Vec<Side>,
     /// For every face of the scene (`Scene::faces` order, culled ones included): how it lies on
     /// screen. Feature lines read it: a silhouette edge is one whose two faces lie on the same
@@ -144,10 +153,36 @@ pub struct ScreenScene {
 }
 
 impl ScreenScene {
-    /// The corners of `p`, in order.
+    /// The corners of `p`, in order (copied out of the shared points; on the stack up to four).
     #[inline]
-    pub fn corners(&self, p: &ScreenPoly) -> &[GridPoint] {
-        &self.points[p.start as usize..(p.start + p.len) as usize]
+    pub fn corners(&self, p: &ScreenPoly) -> Corners {
+        self.corner_indices(p)
+            .iter()
+            .map(|&i| self.grid_points[i as usize])
+            .collect()
+    }
+
+    /// Corner k of `p`.
+    #[inline]
+    pub fn corner(&self, p: &ScreenPoly, k: usize) -> GridPoint {
+        self.grid_points[self.corner_indices(p)[k] as usize]
+    }
+
+    /// The corners of `p` as indices into `grid_points`.
+    #[inline]
+    pub fn corner_indices(&self, p: &ScreenPoly) -> &[u32] {
+        &self.corner_points[p.start as usize..(p.start + p.len) as usize]
+    }
+
+    /// Appends the corners of a polygon, each its own new grid point (no sharing: for scenes
+    /// made by hand), and returns the polygon's `start`; its `sides` are the caller's.
+    pub fn push_corners(&mut self, corners: &[GridPoint]) -> u32 {
+        let start = self.corner_points.len() as u32;
+        for &c in corners {
+            self.corner_points.push(self.grid_points.len() as u32);
+            self.grid_points.push(c);
+        }
+        start
     }
 
     /// Where the sides of `p` come from: side k runs from corner k to corner k + 1.
@@ -162,7 +197,7 @@ impl ScreenScene {
     /// an algorithm read (pieces share theirs); an algorithm that reads them often keeps
     /// [`ScreenScene::planes`].
     pub fn plane(&self, p: &ScreenPoly) -> Plane {
-        Plane::of_polygon(self.corners(p))
+        Plane::of_polygon(&self.corners(p))
             .expect("a screen polygon has a support plane: `project` drops those without")
     }
 
@@ -312,38 +347,40 @@ fn snap_clip(p: DVec4) -> GridPoint {
     GridPoint::snap(p.x / p.w, p.y / p.w, p.z / p.w)
 }
 
-/// Replaces `poly`, the last polygon of `points` and `sides`, by triangles of its snapped
-/// corners, each with the support plane through its own three corners. The triangles keep the
-/// polygon's orientation (`area`); a triangle side that is not a side of the polygon is a
-/// [`Side::Diagonal`].
+/// Replaces `poly`, the last polygon of `corner_points` and `sides`, by triangles of its
+/// snapped corners, each with the support plane through its own three corners. The triangles
+/// keep the polygon's orientation (`area`); a triangle side that is not a side of the polygon
+/// is a [`Side::Diagonal`].
 fn split_into_triangles(
     poly: ScreenPoly,
     area: std::cmp::Ordering,
-    points: &mut Vec<GridPoint>,
+    grid_points: &[GridPoint],
+    corner_points: &mut Vec<u32>,
     sides: &mut Vec<Side>,
     polys: &mut Vec<ScreenPoly>,
 ) {
     let start = poly.start as usize;
-    let ring: Vec<GridPoint> = points.drain(start..).collect();
+    let ring: Vec<u32> = corner_points.drain(start..).collect();
     let ring_sides: Vec<Side> = sides.drain(start..).collect();
     let n = ring.len();
+    let point = |k: usize| grid_points[ring[k] as usize];
     // Triangulate counter-clockwise (reversing a clockwise ring), then map back.
     let ccw = area.is_gt();
     let at = |k: usize| if ccw { k } else { n - 1 - k };
-    let ordered: Vec<GridPoint> = (0..n).map(|k| ring[at(k)]).collect();
+    let ordered: Vec<GridPoint> = (0..n).map(|k| point(at(k))).collect();
     for t in crate::exact::polygon::ear_triangles(&ordered) {
         let mut t = t.map(at);
         if !ccw {
             t.reverse();
         }
         // A triangle of no area on the grid goes (its plane, `ScreenScene::plane`, is this).
-        if Plane::through(ring[t[0]], ring[t[1]], ring[t[2]]).is_none() {
+        if Plane::through(point(t[0]), point(t[1]), point(t[2])).is_none() {
             continue;
         }
-        let tri_start = points.len();
+        let tri_start = corner_points.len();
         for j in 0..3 {
             let (a, b) = (t[j], t[(j + 1) % 3]);
-            points.push(ring[a]);
+            corner_points.push(ring[a]);
             sides.push(if b == (a + 1) % n {
                 ring_sides[a]
             } else {
@@ -401,10 +438,18 @@ pub fn project(
         .count();
 
     let mut polys = Vec::with_capacity(scene.faces.len());
-    let mut points: Vec<GridPoint> = Vec::with_capacity(scene.corners.len());
+    // Each scene vertex's index in `grid_points`, once a kept face has it as an unclipped
+    // corner.
+    let mut point_of_vertex: Vec<u32> = vec![u32::MAX; scene.positions.len()];
+    let mut grid_points: Vec<GridPoint> = Vec::with_capacity(scene.positions.len());
+    let mut corner_points: Vec<u32> = Vec::with_capacity(scene.corners.len());
     let mut sides: Vec<Side> = Vec::with_capacity(scene.corners.len());
     let mut buf_a: Vec<(DVec4, Side)> = Vec::new();
     let mut buf_b: Vec<(DVec4, Side)> = Vec::new();
+    // One face's corners until it is kept: the grid point, the scene vertex it is the snap of
+    // (an unclipped corner), and the side leaving it.
+    let mut ring: Vec<(GridPoint, Option<u32>, Side)> = Vec::new();
+    let mut ring_points: Vec<GridPoint> = Vec::new();
     let mut orientation = Vec::with_capacity(scene.faces.len());
 
     for (fi, face) in scene.faces.iter().enumerate() {
@@ -421,30 +466,29 @@ pub fn project(
             orientation.push(Orientation::Outside);
             continue;
         }
-        let start = points.len();
+        ring.clear();
         // A corner at the (x, y) of the one before it ends a side of no length: the side that
         // starts there is the one that goes on.
-        let push =
-            |g: GridPoint, side: Side, points: &mut Vec<GridPoint>, sides: &mut Vec<Side>| {
-                if points.len() > start
-                    && let Some(last) = points.last()
-                    && last.x == g.x
-                    && last.y == g.y
-                {
-                    *sides.last_mut().expect("parallel to points") = side;
-                    return;
-                }
-                points.push(g);
-                sides.push(side);
-            };
+        let push = |g: GridPoint,
+                    vertex: Option<u32>,
+                    side: Side,
+                    ring: &mut Vec<(GridPoint, Option<u32>, Side)>| {
+            if let Some((last, _, last_side)) = ring.last_mut()
+                && last.x == g.x
+                && last.y == g.y
+            {
+                *last_side = side;
+                return;
+            }
+            ring.push((g, vertex, side));
+        };
         if or & CLIP == 0 {
             for (k, &c) in corners.iter().enumerate() {
-                push(
-                    snap_clip(clip[c as usize]),
-                    Side::Edge(k as u32),
-                    &mut points,
-                    &mut sides,
-                );
+                let g = match point_of_vertex[c as usize] {
+                    u32::MAX => snap_clip(clip[c as usize]),
+                    known => grid_points[known as usize],
+                };
+                push(g, Some(c), Side::Edge(k as u32), &mut ring);
             }
         } else {
             stats.clipped += 1;
@@ -462,22 +506,22 @@ pub fn project(
                 }
             }
             for &(p, side) in &buf_a {
-                push(snap_clip(p), side, &mut points, &mut sides);
+                push(snap_clip(p), None, side, &mut ring);
             }
         }
         // Close the ring: the last corner may repeat the first (its side, of no length, goes).
-        while points.len() > start + 1 {
-            let (f, l) = (points[start], *points.last().unwrap());
+        while ring.len() > 1 {
+            let (f, l) = (ring[0].0, ring[ring.len() - 1].0);
             if f.x == l.x && f.y == l.y {
-                points.pop();
-                sides.pop();
+                ring.pop();
             } else {
                 break;
             }
         }
-        let poly_pts = &points[start..];
-        let area = if poly_pts.len() >= 3 {
-            twice_signed_area(poly_pts)
+        ring_points.clear();
+        ring_points.extend(ring.iter().map(|c| c.0));
+        let area = if ring_points.len() >= 3 {
+            twice_signed_area(&ring_points)
         } else {
             std::cmp::Ordering::Equal
         };
@@ -487,50 +531,73 @@ pub fn project(
             std::cmp::Ordering::Equal => Orientation::Flat,
         });
         let plane = if area.is_ne() {
-            Plane::of_polygon(poly_pts)
+            Plane::of_polygon(&ring_points)
         } else {
             None
         };
         let Some(plane) = plane else {
             *orientation.last_mut().expect("pushed above") = Orientation::Flat;
             stats.degenerate_after_snap += 1;
-            points.truncate(start);
-            sides.truncate(start);
             continue;
         };
         let front = area.is_gt() != analysis.meshes[face.mesh as usize].wound_inwards();
         let two_sided = scene.materials[face.material as usize].two_sided;
         if !front && !two_sided && mesh_may_cull(face.mesh as usize) {
             stats.backface_culled += 1;
-            points.truncate(start);
-            sides.truncate(start);
             continue;
+        }
+        // Kept: its corners enter the tables, a vertex's point once for all its faces.
+        let start = corner_points.len();
+        for &(g, vertex, side) in &ring {
+            let known = vertex.map_or(u32::MAX, |v| point_of_vertex[v as usize]);
+            let index = if known != u32::MAX {
+                known
+            } else {
+                grid_points.push(g);
+                let index = (grid_points.len() - 1) as u32;
+                if let Some(v) = vertex {
+                    point_of_vertex[v as usize] = index;
+                }
+                index
+            };
+            corner_points.push(index);
+            sides.push(side);
         }
         let poly = ScreenPoly {
             face: fi as u32,
             id: face.id,
             mesh: face.mesh,
             start: start as u32,
-            len: (points.len() - start) as u32,
+            len: ring.len() as u32,
             front,
         };
-        let planar = poly.len == 3 || points[start..].iter().all(|c| plane.sign_at(*c).is_eq());
+        let planar = poly.len == 3 || ring_points.iter().all(|c| plane.sign_at(*c).is_eq());
         if planar {
             polys.push(poly);
         } else {
             stats.split_nonplanar += 1;
-            split_into_triangles(poly, area, &mut points, &mut sides, &mut polys);
+            split_into_triangles(
+                poly,
+                area,
+                &grid_points,
+                &mut corner_points,
+                &mut sides,
+                &mut polys,
+            );
         }
     }
+    drop(point_of_vertex);
     stats.visible_polys = polys.len();
-    // Reserved for every face; culling leaves about half of a closed mesh's. (Shrinking a
-    // large block gives its pages back in place: no copy.)
+    // Reserved for every face (and vertex); culling leaves about half of a closed mesh's.
+    // (Shrinking a large block gives its pages back in place: no copy.)
     polys.shrink_to_fit();
-    points.shrink_to_fit();
+    grid_points.shrink_to_fit();
+    corner_points.shrink_to_fit();
     sides.shrink_to_fit();
     ScreenScene {
         polys,
-        points,
+        grid_points,
+        corner_points,
         sides,
         orientation,
         width: camera.width,

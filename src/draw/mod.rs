@@ -198,7 +198,7 @@ pub fn draw(
             .collect();
         if run.iter().any(|f| matches!(f, Fragment::Polygon(_))) {
             let p = &screen.polys[poly as usize];
-            rings.push(pixel_ring(&samples, screen.corners(p)));
+            rings.push(pixel_ring(&samples, &screen.corners(p)));
         }
         items.push(item(poly, &[screen.polys[poly as usize].id], rings));
     }

@@ -345,7 +345,7 @@ fn apart_beyond_corner(
     pb: &ScreenPoly,
     line: &Line,
 ) -> Option<bool> {
-    let (ca, cb) = (screen.corners(pa), screen.corners(pb));
+    let (ca, cb) = (&screen.corners(pa), &screen.corners(pb));
     if ca.len() != 3 || cb.len() != 3 {
         return None;
     }
@@ -445,7 +445,7 @@ pub(crate) fn points_box(points: &[GridPoint]) -> [f64; 4] {
 
 /// The polygon's screen box, one grid unit wider each way (a filter).
 fn screen_box(screen: &ScreenScene, p: &ScreenPoly) -> [f64; 4] {
-    points_box(screen.corners(p))
+    points_box(&screen.corners(p))
 }
 
 /// The depth range of the polygon's plane `pl` over its corners (a filter): the plane's depth
@@ -483,7 +483,7 @@ fn straddles(
 ) -> bool {
     let theirs = screen.corners(other);
     let (mut pos, mut neg) = (false, false);
-    for c in screen.corners(p) {
+    for c in &screen.corners(p) {
         if theirs.contains(c) {
             continue;
         }
@@ -503,7 +503,7 @@ fn side_at(line: &Line, c: GridPoint) -> Ordering {
 
 /// The polygon's convex parts, each as its side lines with the inside positive.
 pub(crate) fn convex_parts(screen: &ScreenScene, p: &ScreenPoly) -> Vec<Vec<Line>> {
-    let corners = screen.corners(p);
+    let corners = &screen.corners(p);
     // Work counter-clockwise.
     let ccw: Vec<GridPoint> = if crate::exact::twice_signed_area(corners).is_gt() {
         corners.to_vec()

@@ -105,7 +105,7 @@ impl Track {
 
 /// Which track each piece side belongs to.
 pub struct TrackIndex<'a> {
-    /// Per screen side (`ScreenScene::points` index): the track of the face edge it lies on, or
+    /// Per screen side (`ScreenScene::sides` index): the track of the face edge it lies on, or
     /// `u32::MAX`.
     pub of_side: &'a [u32],
     /// The track of the intersection of two screen polygons, by their planes in the order of
@@ -745,7 +745,7 @@ pub fn mark_faces_in_front(screen: &ScreenScene, tracks: &mut [Track]) {
     let polys = &screen.polys;
     let boxes: Vec<[f64; 4]> = polys
         .iter()
-        .map(|p| super::intersections::points_box(screen.corners(p)))
+        .map(|p| super::intersections::points_box(&screen.corners(p)))
         .collect();
     let grid = BoxGrid::holding(&boxes);
     // Each face's convex parts and plane, made when a track first needs them.

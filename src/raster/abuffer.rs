@@ -242,7 +242,7 @@ pub fn render(
     };
     for &pi in &sequence {
         let poly = &screen.polys[pi as usize];
-        let pts = screen.corners(poly);
+        let pts = &screen.corners(poly);
         let opaque = paints[pi as usize].is_opaque();
         let (j0, j1) = sample::candidate_rows(&s, pts);
         for j in j0..j1 {

@@ -242,7 +242,7 @@ impl Renderer<'_> {
         if b[2] < r.x0 || b[0] > r.x1 || b[3] < r.y0 || b[1] > r.y1 {
             return Class::Disjoint;
         }
-        let pts = self.screen.corners(&self.screen.polys[poly as usize]);
+        let pts = &self.screen.corners(&self.screen.polys[poly as usize]);
         let (w, h) = (self.s.width, self.s.height);
         let scaled = |g: GridPoint| [g.x as i128 * w as i128, g.y as i128 * h as i128];
         for k in 0..pts.len() {
@@ -269,7 +269,7 @@ impl Renderer<'_> {
 
     /// Scan-converts one polygon inside the area with the z-buffer's fill rule.
     fn scan_convert(&mut self, a: &Area, poly: u32) {
-        let pts = self.screen.corners(&self.screen.polys[poly as usize]);
+        let pts = &self.screen.corners(&self.screen.polys[poly as usize]);
         let w = self.s.width;
         for j in a.j0..a.j1 {
             sample::row_crossings(&self.s, pts, j, &self.fb, &mut self.crossings);
@@ -367,7 +367,7 @@ impl Renderer<'_> {
             let mut best: Option<u32> = None;
             for k in start..self.lists.len() {
                 let e = self.lists[k];
-                let pts = self.screen.corners(&self.screen.polys[e.poly as usize]);
+                let pts = &self.screen.corners(&self.screen.polys[e.poly as usize]);
                 if !e.surrounding && !sample::covers(&self.s, pts, i, j, &self.fb) {
                     continue;
                 }

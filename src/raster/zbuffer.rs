@@ -72,7 +72,7 @@ pub fn render(screen: &ScreenScene, mut progress: impl FnMut(usize)) -> ZBuffer 
         if pi % 65536 == 0 {
             progress(pi);
         }
-        let pts = screen.corners(poly);
+        let pts = &screen.corners(poly);
         let (mut ylo, mut yhi) = (i64::MAX, i64::MIN);
         for p in pts {
             ylo = ylo.min(p.y);

@@ -131,7 +131,7 @@ pub(crate) fn pieces_of(screen: &ScreenScene, polys: &[u32]) -> Vec<Piece> {
 /// The convex pieces of screen polygon `poly` ([`initial_pieces`]).
 fn pieces_of_polygon(screen: &ScreenScene, poly: u32) -> SmallVec<[Piece; 1]> {
     let p = &screen.polys[poly as usize];
-    let pts = screen.corners(p);
+    let pts = &screen.corners(p);
     let plane = screen.plane(p);
     let n = pts.len();
     // Back faces seen from behind run clockwise on screen: walk them backwards, the k-th
@@ -210,9 +210,8 @@ pub(crate) fn screen_of_polygons(polys: impl IntoIterator<Item = Vec<GridPoint>>
         ..ScreenScene::default()
     };
     for (k, pts) in polys.into_iter().enumerate() {
-        let start = s.points.len() as u32;
         crate::exact::Plane::of_polygon(&pts).expect("a plane");
-        s.points.extend(&pts);
+        let start = s.push_corners(&pts);
         s.polys.push(crate::project::ScreenPoly {
             face: k as u32,
             id: k as u32,

@@ -74,14 +74,13 @@ mod tests {
             ..ScreenScene::default()
         };
         for (k, (zs, id)) in tris.iter().enumerate() {
-            let start = s.points.len() as u32;
             let pts = [(0, 0), (1 << 20, 0), (0, 1 << 20)]
                 .iter()
                 .zip(zs)
                 .map(|(&(x, y), &z)| GridPoint { x, y, z })
                 .collect::<Vec<_>>();
             Plane::of_polygon(&pts).unwrap();
-            s.points.extend(pts);
+            let start = s.push_corners(&pts);
             s.polys.push(ScreenPoly {
                 face: k as u32,
                 id: *id,

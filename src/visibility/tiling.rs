@@ -25,7 +25,7 @@ pub fn tiles_convex_region_once(screen: &ScreenScene, polys: &[u32]) -> bool {
     let Some(&first) = polys.first() else {
         return true;
     };
-    let turn = crate::exact::twice_signed_area(screen.corners(&screen.polys[first as usize]));
+    let turn = crate::exact::twice_signed_area(&screen.corners(&screen.polys[first as usize]));
     if turn == Ordering::Equal {
         return false;
     }
@@ -34,7 +34,7 @@ pub fn tiles_convex_region_once(screen: &ScreenScene, polys: &[u32]) -> bool {
     let mut edges: FxHashSet<[i64; 4]> = FxHashSet::default();
     edges.reserve(polys.len() * 3);
     for &k in polys {
-        let c = screen.corners(&screen.polys[k as usize]);
+        let c = &screen.corners(&screen.polys[k as usize]);
         if crate::exact::twice_signed_area(c) != turn {
             return false;
         }

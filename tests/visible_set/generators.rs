@@ -666,7 +666,7 @@ fn exact_camera_snaps_dyadic_points_exactly() {
     add_polygon(&mut b, &p);
     let scene = b.finish().unwrap();
     let screen = prepare(&scene, &exact_camera(), CullMode::Auto).screen;
-    let grid: Vec<[i64; 3]> = screen.points.iter().map(|c| [c.x, c.y, c.z]).collect();
+    let grid: Vec<[i64; 3]> = screen.grid_points.iter().map(|c| [c.x, c.y, c.z]).collect();
     let want: Vec<[i64; 3]> = p
         .iter()
         .map(|q| {

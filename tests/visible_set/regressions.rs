@@ -120,16 +120,16 @@ fn sliver_scene() -> ScreenScene {
         ..ScreenScene::default()
     };
     for (face, (id, front, corners)) in polys.into_iter().enumerate() {
-        let start = screen.points.len() as u32;
-        screen
-            .points
-            .extend(corners.iter().map(|&[x, y, z]| GridPoint {
+        let pts: Vec<GridPoint> = corners
+            .iter()
+            .map(|&[x, y, z]| GridPoint {
                 x: x.into(),
                 y: y.into(),
                 z: z.into(),
-            }));
-        let pts = &screen.points[start as usize..];
-        assert!(Plane::of_polygon(pts).is_some(), "a polygon with a plane");
+            })
+            .collect();
+        let start = screen.push_corners(&pts);
+        assert!(Plane::of_polygon(&pts).is_some(), "a polygon with a plane");
         screen.polys.push(ScreenPoly {
             face: face as u32,
             id,
