@@ -32,7 +32,7 @@ use crate::progress::Report;
 use crate::project::ScreenScene;
 use crate::scene::Scene;
 use crate::visibility::{Fragment, Stats, Strategy, VisibleSet, pixel_ring};
-use regions::{Vertices, outline, regions, regions_of, shared_vertices, surfaces};
+use regions::{Vertices, outline, regions, regions_into, shared_vertices, surfaces};
 use std::collections::BTreeMap;
 
 /// How a visible set is drawn.
@@ -162,8 +162,12 @@ pub fn draw(
     // its own: on all cores.
     let seams = options.seams && !opaque.is_empty();
     let color = |p: &Piece| paints[p.poly as usize].color;
-    let (opaque_regions, (strokes, outline)) = rayon::join(
-        || regions_of(opaque, &vertices, screen, group_of, report),
+    let (mut items, (strokes, outline)) = rayon::join(
+        || {
+            regions_into(opaque, &vertices, screen, group_of, report, |r| {
+                item(opaque[r.piece].poly, &r.faces, r.rings)
+            })
+        },
         || {
             rayon::join(
                 || seams.then(|| seam_strokes(opaque, &vertices, &group_of, &color)),
@@ -171,10 +175,6 @@ pub fn draw(
             )
         },
     );
-    let mut items: Vec<DrawItem> = opaque_regions
-        .into_iter()
-        .map(|r| item(opaque[r.piece].poly, &r.faces, r.rings))
-        .collect();
     // Consecutive exact pieces of one face (a face may be several polygons: `project` splits
     // a face that is not planar on the grid) are one item, their union; a painter's whole
     // polygons are one item each (they may overlap).

@@ -79,6 +79,20 @@ pub fn regions_of<K: Ord>(
     key: impl Fn(&Piece) -> K,
     report: Option<Report>,
 ) -> Vec<Region> {
+    regions_into(pieces, vertices, screen, key, report, |r| r)
+}
+
+/// [`regions_of`], each region made into what the caller keeps (`make`) as it is found: a list
+/// of regions beside the caller's list of what it makes of them was a drawing's peak (a
+/// million regions on a million triangles).
+pub fn regions_into<K: Ord, T>(
+    pieces: &[Piece],
+    vertices: &Vertices,
+    screen: &ScreenScene,
+    key: impl Fn(&Piece) -> K,
+    report: Option<Report>,
+    mut make: impl FnMut(Region) -> T,
+) -> Vec<T> {
     let mut ticker = Ticker::new(report, "regions", pieces.len() as u64);
     let mut merged_pieces = 0;
     // The pieces in group order (key, then index): each group a run of them.
@@ -86,7 +100,9 @@ pub fn regions_of<K: Ord>(
     let mut order: Vec<usize> = (0..pieces.len()).collect();
     order.sort_by(|&a, &b| keys[a].cmp(&keys[b]).then(a.cmp(&b)));
     let face_of = |i: usize| screen.polys[pieces[i].poly as usize].id;
-    let mut out = Vec::new();
+    // At most a region per piece: room that is never touched is never resident, and the list
+    // never grows by copying itself.
+    let mut out = Vec::with_capacity(pieces.len());
     for members in order.chunk_by(|&a, &b| keys[a] == keys[b]) {
         // The pieces of the groups before this one are merged.
         ticker.tick(merged_pieces);
@@ -100,14 +116,15 @@ pub fn regions_of<K: Ord>(
                 .iter()
                 .min_by_key(|&&i| (face_of(i), pieces[i].poly, i))
                 .expect("a region has pieces");
-            out.push(Region {
+            out.push(make(Region {
                 faces,
                 piece,
                 rings: m.rings,
-            });
+            }));
         }
     }
     ticker.finish();
+    out.shrink_to_fit();
     out
 }
 
