@@ -37,11 +37,11 @@ use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
 use crate::visibility::grid::for_each_near_edges;
 use glam::DVec3;
+use hashbrown::{HashTable, hash_table};
 use rustc_hash::{FxBuildHasher, FxHashMap};
 use smallvec::SmallVec;
 use std::cmp::Ordering;
 use std::collections::BTreeMap;
-use std::collections::hash_map::Entry;
 use std::hash::BuildHasher;
 
 /// One drawable region of a group.
@@ -165,40 +165,25 @@ pub fn surfaces<P: Eq + std::hash::Hash>(
 }
 
 /// Labels for items `0..n` by `key(index)`: equal keys, equal labels, numbered in order of first
-/// appearance. Keeps the first item of each key by the key's `hash` (16 bytes an item, where a
-/// table of the keys took 64 in [`surfaces`]: a curved surface of a million faces is a million
-/// labels, 134 MB of table), comparing the full keys on every hit (`key` is recomputed for the
-/// first item); a key whose hash another key holds (possible, if never seen) is labelled
-/// through a table of such keys. Room for every item from the start: growing by doubling
-/// holds the old table and the new one at once, and untouched room is never resident.
-fn labels_by_key<K: Eq + std::hash::Hash>(
-    n: usize,
-    key: impl Fn(usize) -> K,
-    hash: impl Fn(&K) -> u64,
-) -> Vec<u32> {
-    let mut first_of_hash: FxHashMap<u64, u32> =
-        FxHashMap::with_capacity_and_hasher(n, Default::default());
-    let mut collided: FxHashMap<K, u32> = FxHashMap::default();
+/// appearance. The table holds the first item of each key (4 bytes a slot, where a table of the
+/// keys took 64 in [`surfaces`]: a curved surface of a million faces is a million labels, 134
+/// MB of table), found by the key's `hash` and compared by the full keys (`key` recomputed for
+/// the first item). Room for every item from the start, so the table never grows (growing
+/// would hold the old table and the new one at once, and rehash every key).
+fn labels_by_key<K: Eq>(n: usize, key: impl Fn(usize) -> K, hash: impl Fn(&K) -> u64) -> Vec<u32> {
+    let mut first_of_key: HashTable<u32> = HashTable::with_capacity(n);
     let mut labels: Vec<u32> = Vec::with_capacity(n);
     let mut next = 0u32;
-    let mut new_label = || {
-        next += 1;
-        next - 1
-    };
     for index in 0..n {
         let k = key(index);
-        let label = match first_of_hash.entry(hash(&k)) {
-            Entry::Vacant(e) => {
+        let same = |&first: &u32| key(first as usize) == k;
+        let rehash = |&first: &u32| hash(&key(first as usize));
+        let label = match first_of_key.entry(hash(&k), same, rehash) {
+            hash_table::Entry::Occupied(e) => labels[*e.get() as usize],
+            hash_table::Entry::Vacant(e) => {
                 e.insert(index as u32);
-                new_label()
-            }
-            Entry::Occupied(e) => {
-                let first = *e.get() as usize;
-                if key(first) == k {
-                    labels[first]
-                } else {
-                    *collided.entry(k).or_insert_with(&mut new_label)
-                }
+                next += 1;
+                next - 1
             }
         };
         labels.push(label);
@@ -410,7 +395,7 @@ fn edge_partners(ids: &PerVertex<u32>) -> Vec<u32> {
         let (v, first) = (&ids[a], ids.first(a));
         (0..v.len()).map(move |k| ((v[k], v[(k + 1) % v.len()]), (first + k) as u32))
     });
-    for (e, f) in cancelling_pairs(edges) {
+    for (e, f) in cancelling_pairs(edges, ids.vertex_count()) {
         let (e, f) = (e as usize, f as usize);
         partners[e] = ids.piece_of(f) as u32;
         partners[f] = ids.piece_of(e) as u32;
@@ -728,7 +713,8 @@ impl Group<'_> {
             }
         });
         let mut cancelled = vec![false; edges.len()];
-        for (f, b) in cancelling_pairs(edges.iter().enumerate().map(|(e, x)| ((x.from, x.to), e))) {
+        let named = edges.iter().enumerate().map(|(e, x)| ((x.from, x.to), e));
+        for (f, b) in cancelling_pairs(named, edges.len()) {
             cancelled[f] = true;
             cancelled[b] = true;
             components.union(edges[f].owner, edges[b].owner);
@@ -815,11 +801,15 @@ impl Group<'_> {
 
 /// The pairs of edges, given as ((from, to), name) with distinct names, that run between the
 /// same two points in opposite directions: each edge pairs with at most one, in name order.
-fn cancelling_pairs<E: Copy + Ord>(edges: impl Iterator<Item = ((u32, u32), E)>) -> Vec<(E, E)> {
+/// `count` is the number of edges (room made once: a list grown by doubling holds its old room
+/// and its new one at once, on a million pieces 26 MB and 52).
+fn cancelling_pairs<E: Copy + Ord>(
+    edges: impl Iterator<Item = ((u32, u32), E)>,
+    count: usize,
+) -> Vec<(E, E)> {
     // (the two ends, smaller first; whether the edge runs from the larger; the edge)
-    let mut keyed: Vec<(u64, bool, E)> = edges
-        .map(|((a, b), e)| (((a.min(b) as u64) << 32) | a.max(b) as u64, a > b, e))
-        .collect();
+    let mut keyed: Vec<(u64, bool, E)> = Vec::with_capacity(count);
+    keyed.extend(edges.map(|((a, b), e)| (((a.min(b) as u64) << 32) | a.max(b) as u64, a > b, e)));
     keyed.sort_unstable();
     let mut pairs = Vec::new();
     for run in keyed.chunk_by(|x, y| x.0 == y.0) {
@@ -1020,8 +1010,8 @@ pub(super) mod tests {
     }
 
     /// Labels by key are numbered by first appearance, equal exactly for equal keys, whatever
-    /// the hashes: with the real hash, with one that maps every key to a few values (keys
-    /// sharing a hash go through the collision table), and with one value for all.
+    /// the hashes: with the real hash, with one that maps every key to a few values, and with
+    /// one value for all (the table then tells keys apart by comparing them alone).
     #[test]
     fn labels_by_key_are_by_key_whatever_the_hash_collides() {
         let mut state = 0x2545_f491_4f6c_dd1du64;
