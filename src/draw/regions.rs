@@ -312,10 +312,11 @@ impl<T> std::ops::Index<usize> for PerVertex<T> {
 ///
 /// Most vertices are grid points (input corners, and crossings that land on one): they are
 /// named by their integer coordinates in a hash map, without looking at any other vertex. A
-/// vertex that is not known to be a corner is compared exactly with the earlier vertices whose
-/// f64 points lie within both error bounds of its own (found in a hash of square cells), and,
-/// if it turns out to be a grid point, with the map, where it is entered when it is new: so a
-/// crossing and a corner at the same point share an id whichever comes first.
+/// vertex that is not known to be a corner is compared exactly with the earlier points off the
+/// grid (each entered once, by the vertex that named it) whose f64 points lie within both error
+/// bounds of its own (found in a hash of square cells), and, if it turns out to be a grid
+/// point, with the map, where it is entered when it is new: so a crossing and a corner at the
+/// same point share an id whichever comes first.
 pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
     // Each exact point is entered once, where it is first named, as that (piece, vertex): a
     // grid point in `at_grid_point`, any other point in `near`. A later vertex of the point

@@ -199,8 +199,11 @@ impl Occlusion {
             .flat_map(|&k| (0..screen.polys[k as usize].len).map(move |i| (k, i)))
             .collect();
         let ends = |&(k, i): &(u32, u32)| {
-            let c = screen.corners(&screen.polys[k as usize]);
-            let (u, v) = (c[i as usize], c[(i as usize + 1) % c.len()]);
+            let p = &screen.polys[k as usize];
+            let (u, v) = (
+                screen.corner(p, i as usize),
+                screen.corner(p, (i + 1) as usize % p.len as usize),
+            );
             ([u.x, u.y], [v.x, v.y])
         };
         // (the segment, its ends in increasing order; does the side run that way?)
