@@ -66,7 +66,7 @@ pub(crate) fn unhidden_pieces(screen: &ScreenScene, polys: &[u32]) -> (Vec<Piece
             })
     };
     let parts =
-        (refs.iter().map(|p| (p.poly, p.frame))).chain(whole.iter().map(|&k| (k, frame(k))));
+        (refs.iter().map(|p| (p.poly, p.grid_frame()))).chain(whole.iter().map(|&k| (k, frame(k))));
     let Some(cells) = Occlusion::of_parts(screen, parts, &refs, CELLS_PER_PIECE) else {
         drop(refs);
         return (merged(made, pieces_of(screen, &whole)), 0);
@@ -137,12 +137,12 @@ impl Occlusion {
     /// piece. `None` when no polygon is seen from the back, or none from the front (nothing to
     /// try the test on, or no cover).
     pub fn of(screen: &ScreenScene, pieces: &[&Piece], cells_per_piece: f64) -> Option<Occlusion> {
-        let parts = pieces.iter().map(|p| (p.poly, p.frame));
+        let parts = pieces.iter().map(|p| (p.poly, p.grid_frame()));
         Occlusion::of_parts(screen, parts, pieces, cells_per_piece)
     }
 
     /// [`Occlusion::of`] for pieces some of which are not made yet: `parts` are every piece's
-    /// polygon and frame, `pieces` those made, which must include every piece seen from the front
+    /// polygon and grid frame ([`Piece::grid_frame`]), `pieces` those made, which must include every piece seen from the front
     /// (the cover); the others are only tried.
     fn of_parts(
         screen: &ScreenScene,

@@ -202,7 +202,7 @@ pub fn visible_pieces(
         settled: 0.0,
         root_size: 1.0,
     };
-    if let Some(root) = pieces.iter().map(|p| p.frame).reduce(|a, b| {
+    if let Some(root) = pieces.iter().map(Piece::grid_frame).reduce(|a, b| {
         [
             a[0].min(b[0]),
             a[1].min(b[1]),
