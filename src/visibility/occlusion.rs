@@ -142,8 +142,8 @@ impl Occlusion {
     }
 
     /// [`Occlusion::of`] for pieces some of which are not made yet: `parts` are every piece's
-    /// polygon and grid frame ([`Piece::grid_frame`]), `pieces` those made, which must include every piece seen from the front
-    /// (the cover); the others are only tried.
+    /// polygon and grid frame ([`Piece::grid_frame`]), `pieces` those made, which must include
+    /// every piece seen from the front (the cover); the others are only tried.
     fn of_parts(
         screen: &ScreenScene,
         parts: impl Iterator<Item = (u32, [i64; 4])>,
