@@ -605,3 +605,46 @@ pub fn project(
         stats,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::NamedView;
+    use crate::scene::analysis::analyse;
+    use crate::scene::primitives::{exported_sphere_scene, sphere_scene};
+    use std::collections::BTreeSet;
+
+    /// Corners name shared grid points: each is the snap of its face's vertex, the faces of a
+    /// vertex share one point, and a face that is not kept (culled) adds none: the points are
+    /// exactly one per vertex of the kept faces.
+    #[test]
+    fn a_vertex_is_snapped_once_for_all_its_kept_faces() {
+        for scene in [sphere_scene(2000), exported_sphere_scene(2000)] {
+            let bounds = scene.bounds().expect("a sphere has bounds");
+            let camera = Camera::fit(NamedView::Front, bounds, false, 40.0, 64, 64);
+            let screen = project(&scene, &analyse(&scene), &camera, CullMode::Auto);
+            let m = camera.view_projection();
+            let mut kept_vertices = BTreeSet::new();
+            let mut named = vec![false; screen.grid_points.len()];
+            for p in &screen.polys {
+                let face_corners = scene.face_corners(&scene.faces[p.face as usize]);
+                for (k, &i) in screen.corner_indices(p).iter().enumerate() {
+                    named[i as usize] = true;
+                    let Side::Edge(j) = screen.sides(p)[k] else {
+                        panic!("nothing is clipped in this view");
+                    };
+                    let vertex = face_corners[j as usize];
+                    kept_vertices.insert(vertex);
+                    let snapped = snap_point(&m, scene.positions[vertex as usize]);
+                    assert_eq!(Some(screen.grid_points[i as usize]), snapped);
+                }
+            }
+            assert!(
+                named.iter().all(|&n| n),
+                "every point is some kept corner's"
+            );
+            assert_eq!(screen.grid_points.len(), kept_vertices.len());
+            assert_eq!(screen.corner_points.len(), 3 * screen.polys.len());
+        }
+    }
+}
