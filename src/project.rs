@@ -131,9 +131,9 @@ pub type Corners = smallvec::SmallVec<[GridPoint; 4]>;
 pub struct ScreenScene {
     /// The polygons, in face order.
     pub polys: Vec<ScreenPoly>,
-    /// The grid points that corners name: each scene vertex's snap once, whichever faces share
-    /// it (a mesh's vertex is the corner of six triangles on average), then the points
-    /// clipping made.
+    /// The grid points that corners name, in the order kept faces first name them: each scene
+    /// vertex's snap once, whichever faces share it (a mesh's vertex is the corner of six
+    /// triangles on average), and the points clipping made (one per clipped corner).
     pub grid_points: Vec<GridPoint>,
     /// Every polygon's corners, one run per polygon: indices into `grid_points`.
     pub corner_points: Vec<u32>,
