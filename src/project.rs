@@ -446,10 +446,10 @@ pub fn project(
     let mut sides: Vec<Side> = Vec::with_capacity(scene.corners.len());
     let mut buf_a: Vec<(DVec4, Side)> = Vec::new();
     let mut buf_b: Vec<(DVec4, Side)> = Vec::new();
-    // One face's corners until it is kept: the grid point, the scene vertex it is the snap of
-    // (an unclipped corner), and the side leaving it.
-    let mut ring: Vec<(GridPoint, Option<u32>, Side)> = Vec::new();
+    // One face's corners until it is kept: the grid points, and per corner the scene vertex it
+    // is the snap of (an unclipped corner) and the side leaving it.
     let mut ring_points: Vec<GridPoint> = Vec::new();
+    let mut ring: Vec<(Option<u32>, Side)> = Vec::new();
     let mut orientation = Vec::with_capacity(scene.faces.len());
 
     for (fi, face) in scene.faces.iter().enumerate() {
@@ -466,21 +466,24 @@ pub fn project(
             orientation.push(Orientation::Outside);
             continue;
         }
+        ring_points.clear();
         ring.clear();
         // A corner at the (x, y) of the one before it ends a side of no length: the side that
         // starts there is the one that goes on.
         let push = |g: GridPoint,
                     vertex: Option<u32>,
                     side: Side,
-                    ring: &mut Vec<(GridPoint, Option<u32>, Side)>| {
-            if let Some((last, _, last_side)) = ring.last_mut()
+                    ring_points: &mut Vec<GridPoint>,
+                    ring: &mut Vec<(Option<u32>, Side)>| {
+            if let Some(last) = ring_points.last()
                 && last.x == g.x
                 && last.y == g.y
             {
-                *last_side = side;
+                ring.last_mut().expect("parallel to the points").1 = side;
                 return;
             }
-            ring.push((g, vertex, side));
+            ring_points.push(g);
+            ring.push((vertex, side));
         };
         if or & CLIP == 0 {
             for (k, &c) in corners.iter().enumerate() {
@@ -488,7 +491,13 @@ pub fn project(
                     u32::MAX => snap_clip(clip[c as usize]),
                     known => grid_points[known as usize],
                 };
-                push(g, Some(c), Side::Edge(k as u32), &mut ring);
+                push(
+                    g,
+                    Some(c),
+                    Side::Edge(k as u32),
+                    &mut ring_points,
+                    &mut ring,
+                );
             }
         } else {
             stats.clipped += 1;
@@ -506,20 +515,19 @@ pub fn project(
                 }
             }
             for &(p, side) in &buf_a {
-                push(snap_clip(p), None, side, &mut ring);
+                push(snap_clip(p), None, side, &mut ring_points, &mut ring);
             }
         }
         // Close the ring: the last corner may repeat the first (its side, of no length, goes).
-        while ring.len() > 1 {
-            let (f, l) = (ring[0].0, ring[ring.len() - 1].0);
+        while ring_points.len() > 1 {
+            let (f, l) = (ring_points[0], ring_points[ring_points.len() - 1]);
             if f.x == l.x && f.y == l.y {
+                ring_points.pop();
                 ring.pop();
             } else {
                 break;
             }
         }
-        ring_points.clear();
-        ring_points.extend(ring.iter().map(|c| c.0));
         let area = if ring_points.len() >= 3 {
             twice_signed_area(&ring_points)
         } else {
@@ -548,7 +556,7 @@ pub fn project(
         }
         // Kept: its corners enter the tables, a vertex's point once for all its faces.
         let start = corner_points.len();
-        for &(g, vertex, side) in &ring {
+        for (&g, &(vertex, side)) in ring_points.iter().zip(&ring) {
             let known = vertex.map_or(u32::MAX, |v| point_of_vertex[v as usize]);
             let index = if known != u32::MAX {
                 known
@@ -586,7 +594,6 @@ pub fn project(
             );
         }
     }
-    drop(point_of_vertex);
     stats.visible_polys = polys.len();
     // Reserved for every face (and vertex); culling leaves about half of a closed mesh's.
     // (Shrinking a large block gives its pages back in place: no copy.)
