@@ -1,12 +1,15 @@
 //! The 3D BSP tree of a screen scene's pieces: an exact painter order, and a second way to the
 //! exact visible set.
 //!
-//! The pieces' support planes are the splitters; a piece that straddles a splitter is split
-//! exactly (interpenetration and cyclic overlap resolve here). After perspective the view is
-//! orthographic along +z, so for every support plane (c > 0) the viewer is on its negative side:
-//! negative subtree, the node's own pieces, positive subtree is front to back, with no plane test
-//! in the walk. Vertical screen lines also serve as splitters where support planes would leave
-//! the tree unbalanced (the faces of a convex mesh never separate one another).
+//! A node first looks for its pieces' front layer ([`front_layer`]): the pieces nothing else in
+//! the node can hide, which go first, unsplit, and the rest behind them (a convex surface's
+//! front faces, then the faces behind). Where no piece may go first (cyclic overlap,
+//! interpenetration), or the layer is thin and a splitter divides the pieces, the pieces'
+//! support planes are the splitters; a piece that straddles a splitter is split exactly. After
+//! perspective the view is orthographic along +z, so for every support plane (c > 0) the viewer
+//! is on its negative side: negative subtree, the node's own pieces, positive subtree is front to
+//! back, with no plane test in the walk. Vertical screen lines also serve as splitters where
+//! support planes would leave the tree unbalanced.
 //!
 //! Invariant of the tree: walking it front to back ([`Bsp::front_to_back`]) visits every
 //! fragment after every fragment that can hide part of it. Coplanar overlapping pieces are
@@ -16,6 +19,7 @@
 //! exact strategy for the back-to-front order of translucent faces.
 
 use super::coverage::{Coverage, bounds, tie_key};
+use super::depth;
 use super::initial_pieces;
 use super::strips::Counters;
 use super::visible_set::{Fragment, VisibleSet};
@@ -57,7 +61,8 @@ impl Counters for BspStats {
 /// A splitter's node. The viewer is on every support plane's negative side, so the walk needs
 /// no plane test: the plane is only used while building.
 struct Node {
-    /// Pieces lying in `plane`, front to back (tie rule applied).
+    /// The node's own pieces: those lying in its splitter's plane (tie rule applied), or a
+    /// front layer, or a bag of pieces none of which can hide another.
     on: Vec<Piece>,
     neg: Option<u32>,
     pos: Option<u32>,
@@ -98,18 +103,42 @@ impl Splitter {
     }
 }
 
-/// How many splits and how unbalanced a partition would be, over a sample: lower is better.
-fn score(splitter: &Splitter, sample: &[&Piece]) -> i64 {
-    let (mut neg, mut pos, mut split) = (0i64, 0i64, 0i64);
-    for p in sample {
-        match splitter.sides(p) {
-            (true, false) => neg += 1,
-            (false, true) => pos += 1,
-            (true, true) => split += 1,
-            (false, false) => {}
+/// How a splitter would partition a sample of pieces.
+#[derive(Clone, Copy, Debug)]
+struct Tally {
+    /// How many splits and how unbalanced, weighed: lower is better.
+    cost: i64,
+    /// Pieces wholly on one side, on the other, and split.
+    neg: i64,
+    pos: i64,
+    split: i64,
+}
+
+impl Tally {
+    fn of(splitter: &Splitter, sample: &[&Piece]) -> Tally {
+        let (mut neg, mut pos, mut split) = (0i64, 0i64, 0i64);
+        for p in sample {
+            match splitter.sides(p) {
+                (true, false) => neg += 1,
+                (false, true) => pos += 1,
+                (true, true) => split += 1,
+                (false, false) => {}
+            }
+        }
+        Tally {
+            cost: 8 * split + (neg - pos).abs(),
+            neg,
+            pos,
+            split,
         }
     }
-    8 * split + (neg - pos).abs()
+
+    /// Does the splitter divide the sample, leaving each side at most three quarters of it and
+    /// splitting at most one piece in sixteen? Such a splitter shrinks a crowd geometrically.
+    fn divides(&self) -> bool {
+        let all = self.neg + self.pos + self.split;
+        16 * self.split <= all && 4 * self.neg.max(self.pos) <= 3 * all
+    }
 }
 
 /// The vertical line x = m (or y = m), positive on the larger side.
@@ -175,6 +204,171 @@ fn pairwise_separated(list: &[Piece], boxes: &[[f64; 4]]) -> bool {
     true
 }
 
+/// A crowd: past this many pairs of overlapping screen boxes per piece, a node looks for its
+/// [`front_layer`] only when no splitter divides it ([`Tally::divides`]): the layer's exact
+/// tests cost a pair each. A tessellated surface's triangles meet up to about 30 neighbours'
+/// boxes (bunny, dragon, counter under `--method bsp`); a sphere's polar slivers seen edge-on
+/// meet 60 (100k triangles) to 170 (1M), a stack of parallel squares all but one of the others.
+const LAYER_PAIRS_PER_PIECE: usize = 32;
+
+/// A front layer with fewer than one piece in this many is thin: the node takes a splitter
+/// instead (shingles overlapping in a chain would otherwise be peeled one per level).
+const THIN_LAYER: usize = 32;
+
+/// Can `p` hide no part of `of`? Proven when `p` is wholly deeper (its proven depth range,
+/// [`depth::range`], beyond `of`'s), or wholly in the closed half-space behind `of`'s support
+/// plane and not in the plane: along every ray through both, `p`'s point is then at least as
+/// deep, and as deep only on a line.
+fn cannot_hide(p: (&Piece, [f64; 2]), of: (&Piece, [f64; 2])) -> bool {
+    p.1[0] > of.1[1] || p.0.sides_of_plane(&of.0.support) == (false, true)
+}
+
+/// A piece whose place the layer search decides at its node; otherwise a piece's entry is the
+/// index, in its node's list, of a piece that may hide part of it (found by the parent's search;
+/// the two are the same pieces, unsplit, so the piece is still not in the layer).
+const OPEN: u32 = u32::MAX;
+
+/// Sweeps the boxes' interiors in x, calling `meet(i, j)` (`i < j`) for each overlapping pair
+/// with at least one open piece (`open[k]`), until it returns `false`; returns whether the
+/// sweep ran to the end. Pairs of settled pieces are never visited: a stack of layers costs
+/// each level the pairs of its open pieces, not all pairs.
+fn box_pairs(
+    boxes: &[[f64; 4]],
+    open: &[bool],
+    mut meet: impl FnMut(usize, usize) -> bool,
+) -> bool {
+    let mut order: Vec<u32> = (0..boxes.len() as u32).collect();
+    order.sort_by(|&a, &b| {
+        boxes[a as usize][0]
+            .total_cmp(&boxes[b as usize][0])
+            .then(a.cmp(&b))
+    });
+    // The boxes the sweep line crosses: open ones, and settled ones.
+    let mut crossing: [Vec<u32>; 2] = [Vec::new(), Vec::new()];
+    for i in order {
+        let b = &boxes[i as usize];
+        let is_open = open[i as usize];
+        for list in &mut crossing {
+            list.retain(|&j| boxes[j as usize][2] > b[0]);
+        }
+        let met = if is_open {
+            &crossing[..]
+        } else {
+            &crossing[..1]
+        };
+        for &j in met.iter().flatten() {
+            let a = &boxes[j as usize];
+            if a[1] < b[3] && b[1] < a[3] && !meet(j.min(i) as usize, j.max(i) as usize) {
+                return false;
+            }
+        }
+        crossing[usize::from(!is_open)].push(i);
+    }
+    true
+}
+
+/// The pieces that may go first, before every other piece of `list`: those whose screen
+/// interior meets no other piece's that may hide part of it ([`cannot_hide`]). Two pieces of
+/// the layer never overlap on screen (neither hiding the other would make them equally deep on
+/// their common part, where each is as deep as the other only on a line), so the layer needs no
+/// order among its pieces and no split; a convex surface's front faces are one layer, the faces
+/// behind them the next. All of `list` when its pieces are pairwise separated on screen.
+/// `depths`: the pieces' [`depth::range`]s.
+///
+/// Decides the open pieces of `blockers` (see [`OPEN`]): each stays open (in the layer) or
+/// gets the index of a piece that may hide part of it. Gives up (`false`, `blockers` partly
+/// decided) past `most_pairs` overlapping boxes with an open piece.
+fn front_layer(
+    list: &[Piece],
+    boxes: &[[f64; 4]],
+    depths: &[[f64; 2]],
+    blockers: &mut [u32],
+    most_pairs: usize,
+) -> bool {
+    let open: Vec<bool> = blockers.iter().map(|&b| b == OPEN).collect();
+    let mut pairs = 0;
+    box_pairs(boxes, &open, |i, j| {
+        pairs += 1;
+        if pairs > most_pairs {
+            return false;
+        }
+        let (pi, pj) = ((&list[i], depths[i]), (&list[j], depths[j]));
+        let fails_i = blockers[i] == OPEN && !cannot_hide(pj, pi);
+        let fails_j = blockers[j] == OPEN && !cannot_hide(pi, pj);
+        if (fails_i || fails_j) && !separated(&list[i], &list[j]) {
+            if fails_i {
+                blockers[i] = j as u32;
+            }
+            if fails_j {
+                blockers[j] = i as u32;
+            }
+        }
+        true
+    })
+}
+
+/// What a node does with its pieces.
+enum Plan {
+    /// Nothing can hide anything else: the pieces stay together.
+    Bag,
+    /// The pieces left open go first, the others behind them ([`front_layer`]); the entries are
+    /// as `front_layer` leaves them.
+    Layer(Vec<u32>),
+    /// Partition by a splitter.
+    Split(Splitter),
+}
+
+/// The node's plan: the front layer, unless the pieces are a crowd that a sampled splitter
+/// divides; a splitter when no piece, or only a thin layer, may go first. `blockers`: see
+/// [`OPEN`].
+fn plan(screen: &ScreenScene, list: &[Piece], boxes: &[[f64; 4]], mut blockers: Vec<u32>) -> Plan {
+    if list.len() == 1 {
+        return Plan::Bag;
+    }
+    let depths: Vec<[f64; 2]> = list.iter().map(|p| depth::range(screen, p)).collect();
+    let mut best = None;
+    let given = blockers.clone();
+    let most_pairs = LAYER_PAIRS_PER_PIECE * list.len();
+    if !front_layer(list, boxes, &depths, &mut blockers, most_pairs) {
+        // A crowd: split it if a splitter divides it, else find its layer whatever the cost.
+        if pairwise_separated(list, boxes) {
+            return Plan::Bag;
+        }
+        let (splitter, tally) = best_splitter(list, boxes);
+        if tally.divides() {
+            return Plan::Split(splitter);
+        }
+        best = Some(splitter);
+        blockers = given;
+        front_layer(list, boxes, &depths, &mut blockers, usize::MAX);
+    }
+    let layer = blockers.iter().filter(|&&b| b == OPEN).count();
+    if layer == list.len() {
+        return Plan::Bag;
+    }
+    if THIN_LAYER * layer >= list.len() {
+        Plan::Layer(blockers)
+    } else {
+        // None or a thin layer: peeling pieces a few at a time would take as many levels as
+        // the stack is deep, each sweeping the rest (a splitter also cuts fewer pieces in
+        // soups, where the layers are thin).
+        Plan::Split(best.unwrap_or_else(|| best_splitter(list, boxes).0))
+    }
+}
+
+/// The candidate splitter with the lowest cost on the sample.
+fn best_splitter(list: &[Piece], boxes: &[[f64; 4]]) -> (Splitter, Tally) {
+    let (cands, sample) = candidates(list, boxes);
+    cands
+        .into_iter()
+        .map(|c| {
+            let tally = Tally::of(&c, &sample);
+            (c, tally)
+        })
+        .min_by_key(|(_, tally)| tally.cost)
+        .expect("a list of pieces has a support plane")
+}
+
 /// Partitions `list` by `splitter`: (negative, on, positive).
 fn partition(splitter: &Splitter, list: Vec<Piece>) -> (Vec<Piece>, Vec<Piece>, Vec<Piece>) {
     let (mut neg, mut on, mut pos) = (Vec::new(), Vec::new(), Vec::new());
@@ -225,8 +419,10 @@ impl Bsp {
             Neg(u32),
             Pos(u32),
         }
-        let mut work: Vec<(Link, usize, Vec<Piece>)> = vec![(Link::Root, 1, pieces)];
-        while let Some((link, depth, list)) = work.pop() {
+        // A list's blockers (see [`OPEN`]) are known after a layer; empty means all open.
+        let mut work: Vec<(Link, usize, Vec<Piece>, Vec<u32>)> =
+            vec![(Link::Root, 1, pieces, Vec::new())];
+        while let Some((link, depth, list, mut blockers)) = work.pop() {
             let n = list.len();
             pending -= n;
             let boxes: Vec<[f64; 4]> = if n == 1 {
@@ -234,28 +430,46 @@ impl Bsp {
             } else {
                 list.iter().map(bounds).collect()
             };
-            let (mut neg, mut on, mut pos) = if n == 1 || pairwise_separated(&list, &boxes) {
+            if blockers.is_empty() {
+                blockers = vec![OPEN; n];
+            }
+            let mut rest_blockers = Vec::new();
+            let (mut neg, mut on, mut pos) = match plan(screen, &list, &boxes, blockers) {
                 // Nothing here can hide anything else: keep the pieces together, in input order.
-                (Vec::new(), list, Vec::new())
-            } else {
-                let (cands, sample) = candidates(&list, &boxes);
-                let mut ranked: Vec<(i64, usize)> = cands
-                    .iter()
-                    .enumerate()
-                    .map(|(i, c)| (score(c, &sample), i))
-                    .collect();
-                ranked.sort_unstable();
-                let best = cands[ranked[0].1].clone();
-                let (neg, on, pos) = partition(&best, list);
-                if matches!(best, Splitter::Screen(_)) && (neg.len() >= n || pos.len() >= n) {
-                    // The screen line did not separate anything: use the first support plane,
-                    // which always removes at least its own piece.
-                    let mut all = neg;
-                    all.extend(pos);
-                    let first = Splitter::Support(all[0].support.clone(), all[0].poly);
-                    partition(&first, all)
-                } else {
-                    (neg, on, pos)
+                Plan::Bag => (Vec::new(), list, Vec::new()),
+                // The front layer first, the rest behind it: no plane, no split. A piece of the
+                // rest stays settled while the piece that may hide it is in the rest too.
+                Plan::Layer(blockers) => {
+                    let mut index_in_rest = vec![OPEN; n];
+                    let mut rest_count = 0;
+                    for (k, &b) in blockers.iter().enumerate() {
+                        if b != OPEN {
+                            index_in_rest[k] = rest_count;
+                            rest_count += 1;
+                        }
+                    }
+                    rest_blockers = blockers
+                        .iter()
+                        .filter(|&&b| b != OPEN)
+                        .map(|&b| index_in_rest[b as usize])
+                        .collect();
+                    let mut flags = blockers.iter();
+                    let (on, rest): (Vec<Piece>, Vec<Piece>) =
+                        list.into_iter().partition(|_| flags.next() == Some(&OPEN));
+                    (Vec::new(), on, rest)
+                }
+                Plan::Split(best) => {
+                    let (neg, on, pos) = partition(&best, list);
+                    if matches!(best, Splitter::Screen(_)) && (neg.len() >= n || pos.len() >= n) {
+                        // The screen line did not separate anything: use the first support
+                        // plane, which always removes at least its own piece.
+                        let mut all = neg;
+                        all.extend(pos);
+                        let first = Splitter::Support(all[0].support.clone(), all[0].poly);
+                        partition(&first, all)
+                    } else {
+                        (neg, on, pos)
+                    }
                 }
             };
             // Coplanar pieces that overlap resolve by the tie rule; in a separated bag the order
@@ -279,10 +493,20 @@ impl Bsp {
             }
             pending += neg.len() + pos.len();
             if !neg.is_empty() {
-                work.push((Link::Neg(index), depth + 1, std::mem::take(&mut neg)));
+                work.push((
+                    Link::Neg(index),
+                    depth + 1,
+                    std::mem::take(&mut neg),
+                    Vec::new(),
+                ));
             }
             if !pos.is_empty() {
-                work.push((Link::Pos(index), depth + 1, std::mem::take(&mut pos)));
+                work.push((
+                    Link::Pos(index),
+                    depth + 1,
+                    std::mem::take(&mut pos),
+                    rest_blockers,
+                ));
             }
             let placed = stats.fragments as u64;
             ticker.tick_of(placed, placed + pending as u64);
@@ -391,4 +615,69 @@ pub fn translucent_layer(
         .map(|p| Fragment::Piece(Box::new(p)))
         .collect();
     (layer, stats)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exact::GridPoint;
+    use crate::visibility::screen_of_polygons;
+
+    fn point([x, y, z]: [i64; 3]) -> GridPoint {
+        GridPoint { x, y, z }
+    }
+
+    /// A parallelepiped seen obliquely, one quad per face: three faces in front, three behind.
+    fn parallelepiped() -> ScreenScene {
+        let (u, v, w) = ([40, 8, -12], [12, 44, 16], [16, -12, 48]);
+        let corner = |i: i64, j: i64, k: i64| {
+            point(std::array::from_fn(|a| {
+                200 + i * u[a] + j * v[a] + k * w[a]
+            }))
+        };
+        let mut faces = Vec::new();
+        for side in 0..2 {
+            faces.push([(0, 0), (1, 0), (1, 1), (0, 1)].map(|(j, k)| corner(side, j, k)));
+            faces.push([(0, 0), (1, 0), (1, 1), (0, 1)].map(|(i, k)| corner(i, side, k)));
+            faces.push([(0, 0), (1, 0), (1, 1), (0, 1)].map(|(i, j)| corner(i, j, side)));
+        }
+        screen_of_polygons(faces.into_iter().map(Vec::from))
+    }
+
+    /// The faces of a convex body go in two layers, the front faces then the faces they hide,
+    /// with no split: no support plane of a convex body separates its faces, and screen lines
+    /// would cut them.
+    #[test]
+    fn a_convex_bodys_faces_are_two_layers_without_a_split() {
+        let screen = parallelepiped();
+        let bsp = Bsp::build(&screen);
+        assert_eq!((bsp.stats.pieces, bsp.stats.fragments), (6, 6));
+        assert_eq!((bsp.stats.nodes, bsp.stats.depth), (2, 2));
+        let (visible, _) = bsp.visible_set(&screen);
+        let mut polys: Vec<u32> = visible.pieces.iter().map(|p| p.poly).collect();
+        polys.sort();
+        polys.dedup();
+        assert_eq!(polys.len(), 3, "the three front faces, whole: {polys:?}");
+    }
+
+    /// Parallel squares stacked in depth all overlap on screen: a crowd. A support plane in the
+    /// middle of the stack divides it, so the tree halves it level by level (peeling at most
+    /// [`THIN_LAYER`] squares one per level at the bottom) instead of peeling one square per
+    /// level from the top, and still walks the squares front to back.
+    #[test]
+    fn a_crowd_that_a_plane_divides_is_split_not_peeled() {
+        let squares = (0..400).map(|k| {
+            let z = 5000 - 5 * k;
+            [[k, k], [k + 800, k], [k + 800, k + 800], [k, k + 800]]
+                .map(|[x, y]| point([x, y, z]))
+                .to_vec()
+        });
+        let screen = screen_of_polygons(squares);
+        let bsp = Bsp::build(&screen);
+        assert_eq!((bsp.stats.pieces, bsp.stats.fragments), (400, 400));
+        assert!(bsp.stats.depth <= 40, "depth {}", bsp.stats.depth);
+        let mut depths = Vec::new();
+        bsp.front_to_back(|p| depths.push(screen.corner(&screen.polys[p.poly as usize], 0).z));
+        assert!(depths.is_sorted(), "front to back: {depths:?}");
+    }
 }
