@@ -30,7 +30,7 @@ use super::coverage_map::visible_pieces_of_strips;
 use super::grid::sweep_overlapping;
 use super::occlusion::unhidden_pieces;
 use super::strips::{Strips, solve_strips};
-use super::tiling::tiles_convex_region_once;
+use super::tiling::{tiles_convex_region_once, twice_hull_area};
 use super::visible_set::{Stats, VisibleSet, put_counts};
 use super::warnock_exact;
 use super::weiler_atherton::{self, ClipBudget};
@@ -699,7 +699,10 @@ fn whole_meshes(screen: &ScreenScene) -> WholeMeshes {
             })
             .sum::<i128>()
             .abs();
+        // Then (exact, and cheaper than matching every edge) the area of the corners' convex
+        // hull, which the outline would be.
         (inscribed..=2 * box_area).contains(&twice_areas[m])
+            && twice_hull_area(screen, &polys_of[m]) == twice_areas[m]
     };
     // A mesh is crowded when its box's interior meets another's.
     let order: Vec<usize> = (0..meshes).filter(|&m| !polys_of[m].is_empty()).collect();

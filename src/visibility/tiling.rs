@@ -77,6 +77,62 @@ pub fn tiles_convex_region_once(screen: &ScreenScene, polys: &[u32]) -> bool {
     loop_points.len() == next.len() && convex_once(&loop_points, turn)
 }
 
+/// Twice the area of the convex hull of `polys`' corners (indices into `screen.polys`): exact
+/// on the grid (Andrew's monotone chain, orientations in i128). Polygons that cover a convex
+/// region once add up to it.
+pub fn twice_hull_area(screen: &ScreenScene, polys: &[u32]) -> i128 {
+    let mut ids: Vec<u32> = polys
+        .iter()
+        .flat_map(|&k| {
+            screen
+                .corner_indices(&screen.polys[k as usize])
+                .iter()
+                .copied()
+        })
+        .collect();
+    ids.sort_unstable();
+    ids.dedup();
+    let mut points: Vec<[i64; 2]> = ids
+        .iter()
+        .map(|&i| {
+            let g = screen.grid_points[i as usize];
+            [g.x, g.y]
+        })
+        .collect();
+    points.sort_unstable();
+    points.dedup();
+    if points.len() < 3 {
+        return 0;
+    }
+    let cross = |o: [i64; 2], a: [i64; 2], b: [i64; 2]| {
+        (a[0] - o[0]) as i128 * (b[1] - o[1]) as i128
+            - (a[1] - o[1]) as i128 * (b[0] - o[0]) as i128
+    };
+    // Lower hull left to right, then upper hull right to left: counter-clockwise. A point
+    // that does not turn left is dropped (collinear ones too).
+    let mut hull: Vec<[i64; 2]> = Vec::with_capacity(points.len() + 1);
+    let add = |hull: &mut Vec<[i64; 2]>, p: [i64; 2], floor: usize| {
+        while hull.len() >= floor && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0 {
+            hull.pop();
+        }
+        hull.push(p);
+    };
+    for &p in &points {
+        add(&mut hull, p, 2);
+    }
+    let lower = hull.len();
+    for &p in points.iter().rev().skip(1) {
+        add(&mut hull, p, lower + 1);
+    }
+    hull.pop();
+    (0..hull.len())
+        .map(|i| {
+            let (c, d) = (hull[i], hull[(i + 1) % hull.len()]);
+            c[0] as i128 * d[1] as i128 - d[0] as i128 * c[1] as i128
+        })
+        .sum()
+}
+
 /// Does the closed loop turn only the way `turn` says (straight on allowed, never back) and go
 /// round exactly once?
 fn convex_once(points: &[[i64; 2]], turn: Ordering) -> bool {
@@ -227,5 +283,28 @@ mod tests {
             .collect();
         let rings: Vec<&[[i64; 2]]> = fan.iter().map(|t| &t[..]).collect();
         assert!(tiles(&rings));
+    }
+
+    /// The hull's area is the convex region's, whatever points lie inside or along its sides,
+    /// and more than an L-shaped region's.
+    #[test]
+    fn the_hull_area_is_the_convex_outlines() {
+        // A 4 x 4 square as four triangles around its centre, one side's midpoint a corner.
+        let square = screen_of(&[
+            &[[0, 0], [2, 0], [2, 2]],
+            &[[2, 0], [4, 0], [2, 2]],
+            &[[4, 0], [4, 4], [2, 2]],
+            &[[4, 4], [0, 4], [2, 2]],
+            &[[0, 4], [0, 0], [2, 2]],
+        ]);
+        assert_eq!(twice_hull_area(&square, &[0, 1, 2, 3, 4]), 32);
+        assert_eq!(twice_hull_area(&square, &[0]), 4);
+        // An L of three unit squares: its hull is the 2 x 2 square less half a unit square.
+        let l = screen_of(&[
+            &[[0, 0], [1, 0], [1, 1], [0, 1]],
+            &[[1, 0], [2, 0], [2, 1], [1, 1]],
+            &[[0, 1], [1, 1], [1, 2], [0, 2]],
+        ]);
+        assert_eq!(twice_hull_area(&l, &[0, 1, 2]), 7);
     }
 }
