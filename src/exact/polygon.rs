@@ -811,6 +811,34 @@ pub fn separated(p: &Piece, q: &Piece) -> bool {
     outside(q, p) || outside(p, q)
 }
 
+/// [`separated`] for two pieces whose vertices are all grid corners (uncut faces, the common
+/// case), in i128 on the corners themselves with no line's coefficients: `None` when a vertex
+/// of either is not a corner.
+pub fn separated_at_corners(p: &Piece, q: &Piece) -> Option<bool> {
+    fn corners(a: &Piece) -> Option<SmallVec<[[i64; 2]; 6]>> {
+        (0..a.len()).map(|k| a.corner(k)).collect()
+    }
+    // Differences below 2^54, products below 2^108: i128 (as `orient2d`).
+    fn orient(o: [i64; 2], a: [i64; 2], b: [i64; 2]) -> i128 {
+        (a[0] - o[0]) as i128 * (b[1] - o[1]) as i128
+            - (a[1] - o[1]) as i128 * (b[0] - o[0]) as i128
+    }
+    // Some edge of `a` with no corner of `b` strictly on its inner side.
+    fn outside(a: &[[i64; 2]], b: &[[i64; 2]]) -> bool {
+        let turn = (1..a.len() - 1)
+            .map(|i| orient(a[0], a[i], a[i + 1]).signum())
+            .find(|&t| t != 0)
+            .unwrap_or(0);
+        turn != 0
+            && (0..a.len()).any(|i| {
+                let (c, d) = (a[i], a[(i + 1) % a.len()]);
+                b.iter().all(|&v| orient(c, d, v) * turn <= 0)
+            })
+    }
+    let (pc, qc) = (corners(p)?, corners(q)?);
+    Some(outside(&qc, &pc) || outside(&pc, &qc))
+}
+
 /// Are two support planes (c > 0) the same plane? Exact: their coefficients are proportional
 /// with a positive factor. The f64 cross products settle almost every pair that differs; the
 /// rest is compared in 512-bit integers (offsets below 2^165 times normals below 2^109).

@@ -24,7 +24,7 @@ use super::initial_pieces;
 use super::strips::Counters;
 use super::visible_set::{Fragment, VisibleSet};
 use crate::exact::Plane;
-use crate::exact::polygon::{Boundary, Piece, Split, separated};
+use crate::exact::polygon::{Boundary, Piece, Split, separated, separated_at_corners};
 use crate::exact::predicates::Line;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
@@ -292,10 +292,16 @@ fn front_layer(
         if pairs > most_pairs {
             return false;
         }
+        // Uncut neighbours on a surface share corners and never overlap: their corners settle
+        // it before any plane test.
+        let apart = separated_at_corners(&list[i], &list[j]);
+        if apart == Some(true) {
+            return true;
+        }
         let (pi, pj) = ((&list[i], depths[i]), (&list[j], depths[j]));
         let fails_i = blockers[i] == OPEN && !cannot_hide(pj, pi);
         let fails_j = blockers[j] == OPEN && !cannot_hide(pi, pj);
-        if (fails_i || fails_j) && !separated(&list[i], &list[j]) {
+        if (fails_i || fails_j) && !apart.unwrap_or_else(|| separated(&list[i], &list[j])) {
             if fails_i {
                 blockers[i] = j as u32;
             }
@@ -658,6 +664,37 @@ mod tests {
         polys.sort();
         polys.dedup();
         assert_eq!(polys.len(), 3, "the three front faces, whole: {polys:?}");
+    }
+
+    /// The corners' separation test is the lines' one, touching and shared corners included.
+    #[test]
+    fn separation_at_corners_is_separation_by_lines() {
+        let mut seed = 7u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) % 7) as i64
+        };
+        let triangles: Vec<Vec<GridPoint>> = (0..300)
+            .map(|k| (0..3).map(|_| point([next(), next(), k])).collect())
+            .filter(|t: &Vec<GridPoint>| crate::exact::Plane::of_polygon(t).is_some())
+            .collect();
+        let screen = screen_of_polygons(triangles);
+        let pieces = crate::visibility::initial_pieces(&screen);
+        let (mut apart, mut pairs) = (0, 0);
+        for p in &pieces {
+            for q in &pieces {
+                let by_lines = separated(p, q);
+                assert_eq!(separated_at_corners(p, q), Some(by_lines));
+                pairs += 1;
+                apart += usize::from(by_lines);
+            }
+        }
+        assert!(
+            apart > pairs / 10 && apart < pairs * 9 / 10,
+            "{apart} of {pairs}"
+        );
     }
 
     /// Parallel squares stacked in depth all overlap on screen: a crowd. A support plane in the
