@@ -804,6 +804,11 @@ fn exact_quotient(n: bnum::types::I256, den: bnum::types::I256) -> Option<i64> {
 /// entirely on its outer side (touching allowed); for convex polygons such a line exists
 /// whenever they do not overlap.
 pub fn separated(p: &Piece, q: &Piece) -> bool {
+    separated_at_corners(p, q).unwrap_or_else(|| separated_by_lines(p, q))
+}
+
+/// [`separated`] by the pieces' lines, whatever their vertices.
+pub fn separated_by_lines(p: &Piece, q: &Piece) -> bool {
     let outside = |a: &Piece, b: &Piece| {
         a.lines_with_approx()
             .any(|(l, la)| !b.sides_of_line_with(l, &la).1)
@@ -813,7 +818,7 @@ pub fn separated(p: &Piece, q: &Piece) -> bool {
 
 /// [`separated`] for two pieces whose vertices are all grid corners (uncut faces, the common
 /// case), in i128 on the corners themselves with no line's coefficients: `None` when a vertex
-/// of either is not a corner.
+/// of either is not a corner. `separated` tries it first.
 pub fn separated_at_corners(p: &Piece, q: &Piece) -> Option<bool> {
     fn corners(a: &Piece) -> Option<SmallVec<[[i64; 2]; 6]>> {
         (0..a.len()).map(|k| a.corner(k)).collect()

@@ -24,7 +24,9 @@ use super::initial_pieces;
 use super::strips::Counters;
 use super::visible_set::{Fragment, VisibleSet};
 use crate::exact::Plane;
-use crate::exact::polygon::{Boundary, Piece, Split, separated, separated_at_corners};
+use crate::exact::polygon::{
+    Boundary, Piece, Split, separated, separated_at_corners, separated_by_lines,
+};
 use crate::exact::predicates::Line;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
@@ -301,7 +303,8 @@ fn front_layer(
         let (pi, pj) = ((&list[i], depths[i]), (&list[j], depths[j]));
         let fails_i = blockers[i] == OPEN && !cannot_hide(pj, pi);
         let fails_j = blockers[j] == OPEN && !cannot_hide(pi, pj);
-        if (fails_i || fails_j) && !apart.unwrap_or_else(|| separated(&list[i], &list[j])) {
+        if (fails_i || fails_j) && !apart.unwrap_or_else(|| separated_by_lines(&list[i], &list[j]))
+        {
             if fails_i {
                 blockers[i] = j as u32;
             }
@@ -685,7 +688,7 @@ mod tests {
         let (mut apart, mut pairs) = (0, 0);
         for p in &pieces {
             for q in &pieces {
-                let by_lines = separated(p, q);
+                let by_lines = crate::exact::polygon::separated_by_lines(p, q);
                 assert_eq!(separated_at_corners(p, q), Some(by_lines));
                 pairs += 1;
                 apart += usize::from(by_lines);
