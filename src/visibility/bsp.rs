@@ -184,26 +184,12 @@ fn candidates<'a>(pieces: &'a [Piece], boxes: &[[f64; 4]]) -> (Vec<Splitter>, Ve
 }
 
 /// Do the pieces pairwise have disjoint interiors on screen? Then no piece can hide another and
-/// their order does not matter: the node needs no splitter. A sweep over x on f64 bounds finds the
+/// their order does not matter: the node needs no splitter. The sweep of [`box_pairs`] finds the
 /// candidate pairs; the exact separation test decides each. Stops at the first overlap.
 fn pairwise_separated(list: &[Piece], boxes: &[[f64; 4]]) -> bool {
-    let mut order: Vec<(f64, usize, [f64; 4])> = boxes
-        .iter()
-        .enumerate()
-        .map(|(i, b)| (b[0], i, *b))
-        .collect();
-    order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    let mut active: Vec<(usize, [f64; 4])> = Vec::new();
-    for (_, i, b) in order {
-        active.retain(|(_, a)| a[2] > b[0]);
-        for (j, a) in &active {
-            if a[1] < b[3] && b[1] < a[3] && !separated(&list[i], &list[*j]) {
-                return false;
-            }
-        }
-        active.push((i, b));
-    }
-    true
+    box_pairs(boxes, &vec![true; list.len()], |i, j| {
+        separated(&list[i], &list[j])
+    })
 }
 
 /// A crowd: past this many pairs of overlapping screen boxes per piece, a node looks for its
