@@ -289,7 +289,7 @@ mod tests {
     /// and more than an L-shaped region's.
     #[test]
     fn the_hull_area_is_the_convex_outlines() {
-        // A 4 x 4 square as four triangles around its centre, one side's midpoint a corner.
+        // A 4 x 4 square as five triangles around its centre (its lower side cut at (2, 0)).
         let square = screen_of(&[
             &[[0, 0], [2, 0], [2, 2]],
             &[[2, 0], [4, 0], [2, 2]],
