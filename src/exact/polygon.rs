@@ -820,24 +820,20 @@ pub fn separated_by_lines(p: &Piece, q: &Piece) -> bool {
 /// case), in i128 on the corners themselves with no line's coefficients: `None` when a vertex
 /// of either is not a corner. `separated` tries it first.
 pub fn separated_at_corners(p: &Piece, q: &Piece) -> Option<bool> {
+    use super::predicates::cross_xy;
     fn corners(a: &Piece) -> Option<SmallVec<[[i64; 2]; 6]>> {
         (0..a.len()).map(|k| a.corner(k)).collect()
-    }
-    // Differences below 2^54, products below 2^108: i128 (as `orient2d`).
-    fn orient(o: [i64; 2], a: [i64; 2], b: [i64; 2]) -> i128 {
-        (a[0] - o[0]) as i128 * (b[1] - o[1]) as i128
-            - (a[1] - o[1]) as i128 * (b[0] - o[0]) as i128
     }
     // Some edge of `a` with no corner of `b` strictly on its inner side.
     fn outside(a: &[[i64; 2]], b: &[[i64; 2]]) -> bool {
         let turn = (1..a.len() - 1)
-            .map(|i| orient(a[0], a[i], a[i + 1]).signum())
+            .map(|i| cross_xy(a[0], a[i], a[i + 1]).signum())
             .find(|&t| t != 0)
             .unwrap_or(0);
         turn != 0
             && (0..a.len()).any(|i| {
                 let (c, d) = (a[i], a[(i + 1) % a.len()]);
-                b.iter().all(|&v| orient(c, d, v) * turn <= 0)
+                b.iter().all(|&v| cross_xy(c, d, v) * turn <= 0)
             })
     }
     let (pc, qc) = (corners(p)?, corners(q)?);

@@ -789,9 +789,13 @@ pub fn heading(l: &Line, m: &Line) -> Ordering {
 
 /// Exact orientation of three grid points' (x, y): `Greater` for counter-clockwise (y up).
 pub fn orient2d(p: GridPoint, q: GridPoint, r: GridPoint) -> Ordering {
-    // Differences below 2^54, products below 2^108: i128.
-    let det = (q.x - p.x) as i128 * (r.y - p.y) as i128 - (q.y - p.y) as i128 * (r.x - p.x) as i128;
-    det.cmp(&0)
+    cross_xy([p.x, p.y], [q.x, q.y], [r.x, r.y]).cmp(&0)
+}
+
+/// Twice the signed area of the triangle of three grid (x, y) points, exact: positive for
+/// counter-clockwise (y up). Differences below 2^54, products below 2^108: i128.
+pub fn cross_xy(o: [i64; 2], a: [i64; 2], b: [i64; 2]) -> i128 {
+    (a[0] - o[0]) as i128 * (b[1] - o[1]) as i128 - (a[1] - o[1]) as i128 * (b[0] - o[0]) as i128
 }
 
 /// How two closed screen segments `p0p1` and `q0q1` (grid points, x and y) meet.

@@ -30,7 +30,7 @@ use super::coverage_map::visible_pieces_of_strips;
 use super::grid::sweep_overlapping;
 use super::occlusion::unhidden_pieces;
 use super::strips::{Strips, solve_strips};
-use super::tiling::{tiles_convex_region_once, twice_hull_area};
+use super::tiling::{tiles_convex_region_once, twice_hull_area, twice_ring_area};
 use super::visible_set::{Stats, VisibleSet, put_counts};
 use super::warnock_exact;
 use super::weiler_atherton::{self, ClipBudget};
@@ -692,13 +692,7 @@ fn whole_meshes(screen: &ScreenScene) -> WholeMeshes {
         let b = boxes[m];
         let box_area = (b[2] - b[0]) as i128 * (b[3] - b[1]) as i128;
         let ring: Vec<[i64; 2]> = extremes[m].iter().flatten().map(|&(_, q)| q).collect();
-        let inscribed = (0..ring.len())
-            .map(|i| {
-                let (c, d) = (ring[i], ring[(i + 1) % ring.len()]);
-                c[0] as i128 * d[1] as i128 - d[0] as i128 * c[1] as i128
-            })
-            .sum::<i128>()
-            .abs();
+        let inscribed = twice_ring_area(&ring).abs();
         // Then (exact, and cheaper than matching every edge) the area of the corners' convex
         // hull, which the outline would be.
         (inscribed..=2 * box_area).contains(&twice_areas[m])

@@ -13,7 +13,7 @@
 //! snapping, two loops, a fold) fails the test and the caller falls back to ordering.
 
 use crate::exact::GridPoint;
-use crate::exact::predicates::orient2d;
+use crate::exact::predicates::{cross_xy, orient2d};
 use crate::project::ScreenScene;
 use rustc_hash::FxHashMap;
 use rustc_hash::FxHashSet;
@@ -104,15 +104,11 @@ pub fn twice_hull_area(screen: &ScreenScene, polys: &[u32]) -> i128 {
     if points.len() < 3 {
         return 0;
     }
-    let cross = |o: [i64; 2], a: [i64; 2], b: [i64; 2]| {
-        (a[0] - o[0]) as i128 * (b[1] - o[1]) as i128
-            - (a[1] - o[1]) as i128 * (b[0] - o[0]) as i128
-    };
     // Lower hull left to right, then upper hull right to left: counter-clockwise. A point
     // that does not turn left is dropped (collinear ones too).
     let mut hull: Vec<[i64; 2]> = Vec::with_capacity(points.len() + 1);
     let add = |hull: &mut Vec<[i64; 2]>, p: [i64; 2], floor: usize| {
-        while hull.len() >= floor && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0 {
+        while hull.len() >= floor && cross_xy(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0 {
             hull.pop();
         }
         hull.push(p);
@@ -125,9 +121,15 @@ pub fn twice_hull_area(screen: &ScreenScene, polys: &[u32]) -> i128 {
         add(&mut hull, p, lower + 1);
     }
     hull.pop();
-    (0..hull.len())
+    twice_ring_area(&hull)
+}
+
+/// Twice the signed area of a closed ring of grid (x, y) points (the shoelace sum), exact:
+/// positive when it runs counter-clockwise.
+pub fn twice_ring_area(ring: &[[i64; 2]]) -> i128 {
+    (0..ring.len())
         .map(|i| {
-            let (c, d) = (hull[i], hull[(i + 1) % hull.len()]);
+            let (c, d) = (ring[i], ring[(i + 1) % ring.len()]);
             c[0] as i128 * d[1] as i128 - d[0] as i128 * c[1] as i128
         })
         .sum()
