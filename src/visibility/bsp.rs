@@ -108,8 +108,6 @@ impl Splitter {
 /// How a splitter would partition a sample of pieces.
 #[derive(Clone, Copy, Debug)]
 struct Tally {
-    /// How many splits and how unbalanced, weighed: lower is better.
-    cost: i64,
     /// Pieces wholly on one side, on the other, and split.
     neg: i64,
     pos: i64,
@@ -127,12 +125,12 @@ impl Tally {
                 (false, false) => {}
             }
         }
-        Tally {
-            cost: 8 * split + (neg - pos).abs(),
-            neg,
-            pos,
-            split,
-        }
+        Tally { neg, pos, split }
+    }
+
+    /// How many splits and how unbalanced, weighed: lower is better.
+    fn cost(&self) -> i64 {
+        8 * self.split + (self.neg - self.pos).abs()
     }
 
     /// Does the splitter divide the sample, leaving each side at most three quarters of it and
@@ -360,7 +358,7 @@ fn best_splitter(list: &[Piece], boxes: &[[f64; 4]]) -> (Splitter, Tally) {
             let tally = Tally::of(&c, &sample);
             (c, tally)
         })
-        .min_by_key(|(_, tally)| tally.cost)
+        .min_by_key(|(_, tally)| tally.cost())
         .expect("a list of pieces has a support plane")
 }
 
