@@ -214,19 +214,29 @@ fn cannot_hide(p: (&Piece, [f64; 2]), of: (&Piece, [f64; 2])) -> bool {
 /// the two are the same pieces, unsplit, so the piece is still not in the layer).
 const OPEN: u32 = u32::MAX;
 
-/// Sweeps the boxes' interiors in x, calling `meet(i, j)` (`i < j`) for each overlapping pair
-/// with at least one open piece (`open[k]`), until it returns `false`; returns whether the
-/// sweep ran to the end. Pairs of settled pieces are never visited: a stack of layers costs
-/// each level the pairs of its open pieces, not all pairs.
+/// Sweeps the boxes' interiors, calling `meet(i, j)` (`i < j`) for each overlapping pair with
+/// at least one open piece (`open[k]`), until it returns `false`; returns whether the sweep ran
+/// to the end. Pairs of settled pieces are never visited: a stack of layers costs each level
+/// the pairs of its open pieces, not all pairs.
+///
+/// The sweep runs along the axis the boxes are shortest on relative to the list's extent:
+/// the boxes a sweep line crosses, each tested against every new box, are then fewest (a
+/// screen strip is tall and narrow: swept in x, its line would cross a whole column).
 fn box_pairs(
     boxes: &[[f64; 4]],
     open: &[bool],
     mut meet: impl FnMut(usize, usize) -> bool,
 ) -> bool {
+    // Box corners by sweep axis: (start, end) along it, then (start, end) across it.
+    let [lo, hi, across_lo, across_hi] = if sweeps_in_x(boxes) {
+        [0, 2, 1, 3]
+    } else {
+        [1, 3, 0, 2]
+    };
     let mut order: Vec<u32> = (0..boxes.len() as u32).collect();
     order.sort_by(|&a, &b| {
-        boxes[a as usize][0]
-            .total_cmp(&boxes[b as usize][0])
+        boxes[a as usize][lo]
+            .total_cmp(&boxes[b as usize][lo])
             .then(a.cmp(&b))
     });
     // The boxes the sweep line crosses: open ones, and settled ones.
@@ -235,7 +245,7 @@ fn box_pairs(
         let b = &boxes[i as usize];
         let is_open = open[i as usize];
         for list in &mut crossing {
-            list.retain(|&j| boxes[j as usize][2] > b[0]);
+            list.retain(|&j| boxes[j as usize][hi] > b[lo]);
         }
         let met = if is_open {
             &crossing[..]
@@ -244,13 +254,36 @@ fn box_pairs(
         };
         for &j in met.iter().flatten() {
             let a = &boxes[j as usize];
-            if a[1] < b[3] && b[1] < a[3] && !meet(j.min(i) as usize, j.max(i) as usize) {
+            if a[across_lo] < b[across_hi]
+                && b[across_lo] < a[across_hi]
+                && !meet(j.min(i) as usize, j.max(i) as usize)
+            {
                 return false;
             }
         }
         crossing[usize::from(!is_open)].push(i);
     }
     true
+}
+
+/// Should [`box_pairs`] sweep in x? When the boxes' mean width is a smaller share of the
+/// list's width than their mean height is of its height: a line across the sweep then
+/// crosses fewer boxes.
+fn sweeps_in_x(boxes: &[[f64; 4]]) -> bool {
+    let mut all = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+    let (mut widths, mut heights) = (0.0, 0.0);
+    for b in boxes {
+        all = [
+            all[0].min(b[0]),
+            all[1].min(b[1]),
+            all[2].max(b[2]),
+            all[3].max(b[3]),
+        ];
+        widths += b[2] - b[0];
+        heights += b[3] - b[1];
+    }
+    // widths / width <= heights / height, multiplied out (no division by an empty extent).
+    widths * (all[3] - all[1]) <= heights * (all[2] - all[0])
 }
 
 /// The pieces that may go first, before every other piece of `list`: those whose screen
