@@ -66,6 +66,9 @@ struct Node {
     /// The node's own pieces: those lying in its splitter's plane (tie rule applied), or a
     /// front layer, or a bag of pieces none of which can hide another.
     on: Vec<Piece>,
+    /// Do the pieces of `on` have pairwise disjoint interiors on screen (a front layer or a
+    /// bag)? Then none clips another in the coverage map ([`Coverage::insert_disjoint`]).
+    disjoint: bool,
     neg: Option<u32>,
     pos: Option<u32>,
 }
@@ -460,7 +463,9 @@ impl Bsp {
                 blockers = vec![OPEN; n];
             }
             let mut rest_blockers = Vec::new();
-            let (mut neg, mut on, mut pos) = match plan(screen, &list, &boxes, blockers) {
+            let plan = plan(screen, &list, &boxes, blockers);
+            let disjoint = !matches!(plan, Plan::Split(_));
+            let (mut neg, mut on, mut pos) = match plan {
                 // Nothing here can hide anything else: keep the pieces together, in input order.
                 Plan::Bag => (Vec::new(), list, Vec::new()),
                 // The front layer first, the rest behind it: no plane, no split. A piece of the
@@ -509,6 +514,7 @@ impl Bsp {
             let index = nodes.len() as u32;
             nodes.push(Node {
                 on,
+                disjoint,
                 neg: None,
                 pos: None,
             });
@@ -600,11 +606,18 @@ impl Bsp {
 
     /// The coverage map of every piece, inserted front to back: each minus the visible pieces
     /// in front ([`Coverage::insert_behind`]). Consumes the tree (its pieces move into the map).
-    pub fn into_coverage(self, screen: &ScreenScene) -> Coverage<'_> {
-        let order = self.into_front_to_back();
-        let mut coverage = Coverage::new(screen, &order);
-        for p in order {
-            coverage.insert_behind(p);
+    pub fn into_coverage(mut self, screen: &ScreenScene) -> Coverage<'_> {
+        let order = self.walk_order();
+        let nodes = &self.nodes;
+        let mut coverage = Coverage::new(screen, order.iter().flat_map(|&n| &nodes[n as usize].on));
+        for n in order {
+            let node = &mut self.nodes[n as usize];
+            let on = std::mem::take(&mut node.on);
+            if node.disjoint {
+                coverage.insert_disjoint(on);
+            } else {
+                on.into_iter().for_each(|p| coverage.insert_behind(p));
+            }
         }
         coverage
     }
@@ -715,6 +728,55 @@ mod tests {
             apart > pairs / 10 && apart < pairs * 9 / 10,
             "{apart} of {pairs}"
         );
+    }
+
+    /// Inserting a node's front layer or bag as one disjoint group leaves the same map as
+    /// inserting the tree's pieces front to back one by one, on a convex body (layers), a
+    /// stack of overlapping squares (splits, coplanar pieces) and a soup of crossing triangles
+    /// (splits, bags, cut pieces).
+    #[test]
+    fn disjoint_groups_cover_as_pieces_one_by_one_do() {
+        let mut seed = 11u64;
+        let mut next = |m: i64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) as i64 % m
+        };
+        let soup: Vec<Vec<GridPoint>> = (0..120)
+            .map(|_| {
+                (0..3)
+                    .map(|_| point([next(900), next(900), next(900)]))
+                    .collect()
+            })
+            .filter(|t: &Vec<GridPoint>| crate::exact::Plane::of_polygon(t).is_some())
+            .collect();
+        // Two overlapping squares in each plane: the tie rule hides part of one.
+        let stack = (0..80).map(|k| {
+            let (z, dx) = (500 - 5 * (k / 2), 20 * (k % 2));
+            [[k, 3 * k], [k + 80, k], [k + 80, k + 80], [k, k + 80]]
+                .map(|[x, y]| point([x + dx, y, z]))
+                .to_vec()
+        });
+        let mut groups = 0;
+        for screen in [
+            parallelepiped(),
+            screen_of_polygons(stack),
+            screen_of_polygons(soup),
+        ] {
+            let bsp = Bsp::build(&screen);
+            groups += bsp
+                .nodes
+                .iter()
+                .filter(|n| n.disjoint && n.on.len() > 1)
+                .count();
+            let grouped = bsp.into_coverage(&screen).into_pieces();
+            let order = Bsp::build(&screen).into_front_to_back();
+            let mut one_by_one = Coverage::new(&screen, &order);
+            order.into_iter().for_each(|p| one_by_one.insert_behind(p));
+            assert_eq!(grouped, one_by_one.into_pieces());
+        }
+        assert!(groups > 20, "{groups} groups of two pieces or more");
     }
 
     /// Parallel squares stacked in depth all overlap on screen: a crowd. A support plane in the

@@ -150,6 +150,27 @@ impl<'a> Coverage<'a> {
         }
     }
 
+    /// Inserts pieces with pairwise disjoint interiors, none of which lies behind an already
+    /// inserted piece where they overlap, as [`Coverage::insert_behind`] one by one would (the
+    /// same visible pieces, in the same order): none clips another, so each is clipped only
+    /// by the pieces in before them, and none is a candidate for the others.
+    pub fn insert_disjoint(&mut self, pieces: Vec<Piece>) {
+        let mut visible = Vec::new();
+        for piece in pieces {
+            self.stats.inserted += 1;
+            if self.occluded(&piece) {
+                continue;
+            }
+            visible.extend(
+                self.clipped_by_near(piece, |_, part, front, out| subtract(part, front, out)),
+            );
+        }
+        for part in visible {
+            let b = bounds(&part);
+            self.visible.add(part, b);
+        }
+    }
+
     /// Pushes the parts of `piece` that no live piece hides (nearer, or coplanar and first by
     /// the tie rule), leaving the map as it is: a translucent fragment over an opaque visible
     /// set.
