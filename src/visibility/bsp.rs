@@ -606,10 +606,16 @@ impl Bsp {
 
     /// The coverage map of every piece, inserted front to back: each minus the visible pieces
     /// in front ([`Coverage::insert_behind`]). Consumes the tree (its pieces move into the map).
+    ///
+    /// No occlusion cells: front to back, a hidden piece meets what hides it in the map at
+    /// once, and the BSP strategy has dropped what the cells prove hidden before building the
+    /// tree ([`super::occlusion::unhidden_pieces`]). Making cells again per strip cost more than
+    /// they saved: 1M sphere file visible set 4.03 -> 3.61 s, same bytes, no scene slower.
     pub fn into_coverage(mut self, screen: &ScreenScene) -> Coverage<'_> {
         let order = self.walk_order();
         let nodes = &self.nodes;
-        let mut coverage = Coverage::new(screen, order.iter().flat_map(|&n| &nodes[n as usize].on));
+        let pieces = order.iter().flat_map(|&n| &nodes[n as usize].on);
+        let mut coverage = Coverage::with_occlusion(screen, pieces, false);
         for n in order {
             let node = &mut self.nodes[n as usize];
             let on = std::mem::take(&mut node.on);
