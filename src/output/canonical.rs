@@ -42,9 +42,10 @@ use std::cmp::Ordering;
 
 /// Puts `drawing` in its canonical form (see the module docs). The picture does not change.
 pub fn canonicalize(drawing: &mut Drawing) {
-    for item in &mut drawing.items {
-        canonical_rings(&mut item.rings);
-    }
+    // Item by item and stroke by stroke on all cores; the sorts are stable, so their order is
+    // the sequential sorts' whatever the thread count.
+    use rayon::prelude::*;
+    (drawing.items.par_iter_mut()).for_each(|item| canonical_rings(&mut item.rings));
     if drawing.opaque_disjoint {
         // NaN opacity counts as translucent: it keeps its place.
         let opaque = drawing
@@ -52,18 +53,18 @@ pub fn canonicalize(drawing: &mut Drawing) {
             .iter()
             .position(|it| it.opacity.is_nan() || it.opacity < 1.0)
             .unwrap_or(drawing.items.len());
-        drawing.items[..opaque].sort_by(cmp_items);
+        drawing.items[..opaque].par_sort_by(cmp_items);
     }
     canonical_rings(&mut drawing.seams.outline);
-    for stroke in &mut drawing.seams.strokes {
+    (drawing.seams.strokes.par_iter_mut()).for_each(|stroke| {
         for seg in &mut stroke.segments {
             *seg = seg.map(|p| p.map(|v| v + 0.0));
             if cmp_points(&seg[1], &seg[0]).is_lt() {
                 seg.swap(0, 1);
             }
         }
-        stroke.segments.sort_by(cmp_segments);
-    }
+        stroke.segments.par_sort_by(cmp_segments);
+    });
     drawing.seams.strokes.sort_by(cmp_strokes);
 }
 
