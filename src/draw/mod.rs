@@ -33,7 +33,6 @@ use crate::project::ScreenScene;
 use crate::scene::Scene;
 use crate::visibility::{Fragment, Stats, Strategy, VisibleSet, pixel_ring};
 use regions::{Vertices, outline, regions, regions_into, shared_vertices, surfaces};
-use std::collections::BTreeMap;
 
 /// How a visible set is drawn.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -233,34 +232,51 @@ fn seam_strokes(
     group: &dyn Fn(&Piece) -> u32,
     color: &dyn Fn(&Piece) -> [f64; 3],
 ) -> Vec<SeamStroke> {
+    use rayon::prelude::*;
     let shared = seams::shared_edges(pieces, vertices, |i| group(&pieces[i]));
-    let mut by_color: BTreeMap<[u8; 3], ([f64; 3], Vec<&seams::SharedEdge>)> = BTreeMap::new();
-    for e in &shared {
-        let [ca, cb] = e.pieces.map(|i| color(&pieces[i as usize]));
-        let key = |c: [f64; 3]| {
-            let u = to_u8(c);
-            (u.iter().map(|&v| v as u32).sum::<u32>(), u)
-        };
-        let c = if key(cb) < key(ca) { cb } else { ca };
-        let entry = by_color.entry(to_u8(c)).or_insert_with(|| (c, Vec::new()));
-        // Faces of one 8-bit colour may differ below it: keep the least, whatever the order
-        // the pieces come in (the canonical form sorts strokes by it).
-        let least = |x: &[f64; 3], y: &[f64; 3]| {
-            x.iter()
-                .zip(y)
-                .map(|(a, b)| a.total_cmp(b))
-                .find(|o| o.is_ne())
-        };
-        if least(&c, &entry.0) == Some(std::cmp::Ordering::Less) {
-            entry.0 = c;
-        }
-        entry.1.push(e);
-    }
+    let key = |c: [f64; 3]| {
+        let u = to_u8(c);
+        (u.iter().map(|&v| v as u32).sum::<u32>(), u)
+    };
+    // Per edge, the colour it is stroked in. Colours per piece first: read per edge, they
+    // cost two cache misses into the pieces each.
+    let piece_color: Vec<[f64; 3]> = pieces.iter().map(color).collect();
+    let stroked: Vec<[f64; 3]> = (shared.iter())
+        .map(|e| {
+            let [ca, cb] = e.pieces.map(|i| piece_color[i as usize]);
+            if key(cb) < key(ca) { cb } else { ca }
+        })
+        .collect();
+    // The edges by 8-bit colour, each colour's in edge order: the colour in the top 24 bits of
+    // a sort key, the edge's index below it.
+    let mut order: Vec<u64> = (stroked.iter().enumerate())
+        .map(|(e, &c)| {
+            let [r, g, b] = to_u8(c).map(u64::from);
+            r << 56 | g << 48 | b << 40 | e as u64
+        })
+        .collect();
+    order.sort_unstable();
+    let edge = |k: &u64| (k & ((1 << 40) - 1)) as usize;
+    // Faces of one 8-bit colour may differ below it: a stroke takes the least, whatever the
+    // order the pieces come in (the canonical form sorts strokes by it).
+    let least = |x: &&[f64; 3], y: &&[f64; 3]| {
+        x.iter()
+            .zip(y.iter())
+            .map(|(a, b)| a.total_cmp(b))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    };
+    let by_color: Vec<&[u64]> = order.chunk_by(|a, b| a >> 40 == b >> 40).collect();
+    // Colour by colour on all cores (a mesh shaded flat has hundreds), in colour order.
     by_color
-        .into_values()
-        .map(|(color, edges)| SeamStroke {
-            color,
-            segments: seams::straight_runs(&edges, pieces, vertices),
+        .into_par_iter()
+        .map(|run| {
+            let colors = run.iter().map(|k| &stroked[edge(k)]);
+            let edges: Vec<&seams::SharedEdge> = run.iter().map(|k| &shared[edge(k)]).collect();
+            SeamStroke {
+                color: *colors.min_by(least).expect("a colour has edges"),
+                segments: seams::straight_runs(&edges, pieces, vertices),
+            }
         })
         .collect()
 }
