@@ -12,19 +12,21 @@
 //! - **Deterministic**: the same drawing and options give the same bytes (the `svg` crate writes
 //!   attributes sorted by name).
 //! - **Streamed**: elements are written as they are made ([`super::svg_stream`]); the document
-//!   never exists whole in memory, only one path's text at a time.
+//!   never exists whole in memory, only one batch of paths' text at a time (rendered on all
+//!   cores, written in order).
 //!
 //! Paths are written as the drawing has them: canonicalize it first
 //! ([`super::canonical::canonicalize`], as the CLI does) for bytes that depend only on what is
 //! drawn. The README's "Output contract" lists every element and attribute.
 
-use super::drawing::{Drawing, Seams};
+use super::drawing::{DrawItem, Drawing, SeamStroke, Seams};
 use super::line_svg::{LineSvgOptions, write_line_layers};
-use super::svg_stream::SvgStream;
+use super::svg_stream::{SvgStream, render_leaf};
 use crate::lines::LineDrawing;
 use crate::paint::to_u8;
 use ::svg::Document;
 use ::svg::node::element::{ClipPath, Definitions, Group, Path, Rectangle};
+use rayon::prelude::*;
 use std::fmt::Write;
 
 /// How the SVG is written.
@@ -73,10 +75,33 @@ pub fn write_document(
             .set("stroke-linejoin", "round");
     }
     s.open(group)?;
-    // One path per item, written directly (`SvgStream::leaf`: the crate's bytes); the strings
-    // are reused from item to item.
+    // One path per item (`render_leaf`: the crate's bytes), rendered on all cores a batch at a
+    // time and written in order: only a batch's text exists at once.
+    for batch in drawing.items.chunks(LEAVES_PER_BATCH) {
+        let rendered: Vec<Vec<u8>> = batch.par_chunks(LEAVES_PER_TASK).map(item_paths).collect();
+        for r in &rendered {
+            s.rendered_leaves(r)?;
+        }
+    }
+    s.close()?;
+    if let Some((lines, line_options)) = lines {
+        write_line_layers(&mut s, lines, line_options)?;
+    }
+    s.finish()
+}
+
+/// Items' paths rendered per batch ([`write_document`]): enough for both cores to share
+/// evenly, a few megabytes of text.
+const LEAVES_PER_BATCH: usize = 16_384;
+/// Items' paths rendered by one task of a batch.
+const LEAVES_PER_TASK: usize = 512;
+
+/// The path elements of `items`, one after another ([`render_leaf`]).
+fn item_paths(items: &[DrawItem]) -> Vec<u8> {
+    // The strings are reused from item to item.
     let (mut d, mut face, mut faces) = (String::new(), String::new(), String::new());
-    for item in &drawing.items {
+    let mut rendered = Vec::new();
+    for item in items {
         d.clear();
         write_rings(&mut d, &item.rings, push_num);
         let fill = hex(item.color);
@@ -100,13 +125,9 @@ pub fn write_document(
         if let Some(opacity) = &opacity {
             attributes.push(("fill-opacity", opacity.as_str()));
         }
-        s.leaf("path", &mut attributes)?;
+        render_leaf(&mut rendered, "path", &mut attributes);
     }
-    s.close()?;
-    if let Some((lines, line_options)) = lines {
-        write_line_layers(&mut s, lines, line_options)?;
-    }
-    s.finish()
+    rendered
 }
 
 /// The root of a document `w` x `h` pixels, one user unit a pixel.
@@ -155,33 +176,45 @@ fn write_seams(s: &mut SvgStream, seams: &Seams) -> std::io::Result<()> {
             .set("stroke-width", num(SEAM_WIDTH))
             .set("stroke-linecap", "butt"),
     )?;
-    for stroke in &seams.strokes {
-        let mut d = String::new();
-        for [p, q] in &stroke.segments {
-            let start = d.len();
-            d.push('M');
-            push_milli(&mut d, p[0]);
-            d.push(' ');
-            push_milli(&mut d, p[1]);
-            let mid = d.len();
-            d.push('L');
-            push_milli(&mut d, q[0]);
-            d.push(' ');
-            push_milli(&mut d, q[1]);
-            // Shorter than the rounding: a butt-ended stroke of no length draws nothing.
-            if d[start + 1..mid] == d[mid + 1..] {
-                d.truncate(start);
-            }
+    // A path per colour, rendered on all cores a few at a time and written in order.
+    for batch in seams.strokes.chunks(rayon::current_num_threads().max(1)) {
+        let rendered: Vec<Vec<u8>> = batch.par_iter().map(stroke_path).collect();
+        for r in &rendered {
+            s.rendered_leaves(r)?;
         }
-        // vector-effect is not inherited: it goes on every path.
-        s.child(
-            Path::new()
-                .set("d", d)
-                .set("stroke", hex(stroke.color))
-                .set("vector-effect", "non-scaling-stroke"),
-        )?;
     }
     s.close()
+}
+
+/// The path of one seam stroke ([`write_seams`], [`render_leaf`]).
+fn stroke_path(stroke: &SeamStroke) -> Vec<u8> {
+    let mut d = String::new();
+    for [p, q] in &stroke.segments {
+        let start = d.len();
+        d.push('M');
+        push_milli(&mut d, p[0]);
+        d.push(' ');
+        push_milli(&mut d, p[1]);
+        let mid = d.len();
+        d.push('L');
+        push_milli(&mut d, q[0]);
+        d.push(' ');
+        push_milli(&mut d, q[1]);
+        // Shorter than the rounding: a butt-ended stroke of no length draws nothing.
+        if d[start + 1..mid] == d[mid + 1..] {
+            d.truncate(start);
+        }
+    }
+    let stroke_color = hex(stroke.color);
+    let mut rendered = Vec::with_capacity(d.len() + 80);
+    // vector-effect is not inherited: it goes on every path.
+    let mut attributes = [
+        ("d", d.as_str()),
+        ("stroke", stroke_color.as_str()),
+        ("vector-effect", "non-scaling-stroke"),
+    ];
+    render_leaf(&mut rendered, "path", &mut attributes);
+    rendered
 }
 
 /// Path data of closed rings, each coordinate written by `num` (into the string, after what it

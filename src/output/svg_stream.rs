@@ -5,7 +5,8 @@
 //! are those the crate's own document tree prints (`Document::to_string`): a child follows its
 //! parent's opening tag on a new line, a closing tag follows the last child on a new line, and
 //! an element that gets no child is written self-closing (`<g/>`). So a drawing streamed here
-//! and one built as a tree are the same file, and only one path's text exists at a time.
+//! and one built as a tree are the same file, and only the text of what is being written exists
+//! at a time.
 
 use ::svg::Node;
 use ::svg::node::element::Element;
@@ -52,18 +53,18 @@ impl<'w> SvgStream<'w> {
     /// the time of writing a drawing of many paths). Attribute names are distinct.
     pub fn leaf(&mut self, name: &str, attributes: &mut [(&str, &str)]) -> io::Result<()> {
         self.start_child()?;
-        attributes.sort_unstable_by_key(|a| a.0);
-        debug_assert!(attributes.windows(2).all(|w| w[0].0 != w[1].0));
-        self.out.write_all(b"<")?;
-        self.out.write_all(name.as_bytes())?;
-        for (key, value) in attributes.iter() {
-            self.out.write_all(b" ")?;
-            self.out.write_all(key.as_bytes())?;
-            self.out.write_all(b"=\"")?;
-            write_escaped(self.out, value)?;
-            self.out.write_all(b"\"")?;
+        write_leaf(self.out, name, attributes)
+    }
+
+    /// Writes children made by [`render_leaf`] (any number, one after another in `rendered`)
+    /// as the next children of the current element: the bytes [`Self::leaf`] writes for each.
+    /// So leaves can be rendered on all cores and written in order.
+    pub fn rendered_leaves(&mut self, rendered: &[u8]) -> io::Result<()> {
+        if rendered.is_empty() {
+            return Ok(());
         }
-        self.out.write_all(b"/>")
+        self.open_tag()?;
+        self.out.write_all(rendered)
     }
 
     /// Closes the current element.
@@ -96,13 +97,42 @@ impl<'w> SvgStream<'w> {
     /// Writes the current element's opening tag if no child has, then the new line a child
     /// starts on.
     fn start_child(&mut self) -> io::Result<()> {
+        self.open_tag()?;
+        self.out.write_all(b"\n")
+    }
+
+    /// Writes the current element's opening tag if no child has.
+    fn open_tag(&mut self) -> io::Result<()> {
         let (_, pending) = self.open.last_mut().expect("an open element");
         if let Some(tag) = pending.take() {
             let open = tag.strip_suffix("/>").expect("self-closing");
             write!(self.out, "{open}>")?;
         }
-        self.out.write_all(b"\n")
+        Ok(())
     }
+}
+
+/// Appends to `rendered` a child leaf as [`SvgStream::leaf`] writes it (the new line it starts
+/// on, then the element), for [`SvgStream::rendered_leaves`].
+pub fn render_leaf(rendered: &mut Vec<u8>, name: &str, attributes: &mut [(&str, &str)]) {
+    rendered.push(b'\n');
+    write_leaf(rendered, name, attributes).expect("writing into memory cannot fail");
+}
+
+/// The element `<name a="v" .../>` (see [`SvgStream::leaf`]).
+fn write_leaf(out: &mut dyn Write, name: &str, attributes: &mut [(&str, &str)]) -> io::Result<()> {
+    attributes.sort_unstable_by_key(|a| a.0);
+    debug_assert!(attributes.windows(2).all(|w| w[0].0 != w[1].0));
+    out.write_all(b"<")?;
+    out.write_all(name.as_bytes())?;
+    for (key, value) in attributes.iter() {
+        out.write_all(b" ")?;
+        out.write_all(key.as_bytes())?;
+        out.write_all(b"=\"")?;
+        write_escaped(out, value)?;
+        out.write_all(b"\"")?;
+    }
+    out.write_all(b"/>")
 }
 
 /// `value` as the crate writes an attribute value: `&`, `<`, `>`, `"` and `'` as entities
@@ -195,14 +225,56 @@ mod tests {
             s.child(element).unwrap();
             s.finish().unwrap();
             let mut direct = Vec::new();
-            let mut s = SvgStream::new(&mut direct, doc);
+            let mut s = SvgStream::new(&mut direct, doc.clone());
             s.leaf("path", &mut attributes).unwrap();
             s.finish().unwrap();
-            assert_eq!(
-                String::from_utf8(direct).unwrap(),
-                String::from_utf8(by_crate).unwrap()
-            );
+            let by_crate = String::from_utf8(by_crate).unwrap();
+            assert_eq!(String::from_utf8(direct).unwrap(), by_crate);
+            // Rendered apart and written later: the same bytes.
+            let mut rendered = Vec::new();
+            render_leaf(&mut rendered, "path", &mut attributes);
+            let mut later = Vec::new();
+            let mut s = SvgStream::new(&mut later, doc);
+            s.rendered_leaves(&rendered).unwrap();
+            s.finish().unwrap();
+            assert_eq!(String::from_utf8(later).unwrap(), by_crate);
         }
+    }
+
+    /// Several leaves rendered into one buffer, and an empty one, are the leaves written one by
+    /// one: an element given no leaf stays self-closing.
+    #[test]
+    fn rendered_leaves_are_leaves_written_one_by_one() {
+        let doc = Document::new().set("width", 1);
+        let leaves = [("d", "M0 0Z"), ("d", "M1 1Z"), ("fill", "#000000")];
+        let mut one_by_one = Vec::new();
+        let mut s = SvgStream::new(&mut one_by_one, doc.clone());
+        s.open(Group::new()).unwrap();
+        s.close().unwrap();
+        s.open(Group::new()).unwrap();
+        for a in leaves {
+            s.leaf("path", &mut [a]).unwrap();
+        }
+        s.finish().unwrap();
+        let render = |leaves: &[(&str, &str)]| {
+            let mut rendered = Vec::new();
+            for &a in leaves {
+                render_leaf(&mut rendered, "path", &mut [a]);
+            }
+            rendered
+        };
+        let mut batched = Vec::new();
+        let mut s = SvgStream::new(&mut batched, doc);
+        s.open(Group::new()).unwrap();
+        s.rendered_leaves(&[]).unwrap();
+        s.close().unwrap();
+        s.open(Group::new()).unwrap();
+        s.rendered_leaves(&render(&leaves[..1])).unwrap();
+        s.rendered_leaves(&render(&leaves[1..])).unwrap();
+        s.finish().unwrap();
+        let text = String::from_utf8(batched).unwrap();
+        assert_eq!(text, String::from_utf8(one_by_one).unwrap());
+        assert!(text.contains("<g/>"), "{text}");
     }
 
     #[test]
