@@ -250,6 +250,12 @@ impl Piece {
         self.vertices[k].corner()
     }
 
+    /// Every vertex as a grid point ([`Self::corner`]), `None` when one is not
+    /// ([`separated_at_corners`]).
+    pub fn grid_corners(&self) -> Option<SmallVec<[[i64; 2]; 6]>> {
+        (0..self.len()).map(|k| self.corner(k)).collect()
+    }
+
     /// For line k, the grid (x, y) of the face edge it runs along, when it is one (both ends lie
     /// on the support plane, the piece's side between them): a sign that agrees at both ends
     /// holds all along it.
@@ -820,10 +826,13 @@ pub fn separated_by_lines(p: &Piece, q: &Piece) -> bool {
 /// case), in i128 on the corners themselves with no line's coefficients: `None` when a vertex
 /// of either is not a corner. `separated` tries it first.
 pub fn separated_at_corners(p: &Piece, q: &Piece) -> Option<bool> {
+    Some(corners_separated(&p.grid_corners()?, &q.grid_corners()?))
+}
+
+/// [`separated_at_corners`] on the pieces' [`Piece::grid_corners`] (for a caller testing each
+/// piece against many).
+pub fn corners_separated(pc: &[[i64; 2]], qc: &[[i64; 2]]) -> bool {
     use super::predicates::cross_xy;
-    fn corners(a: &Piece) -> Option<SmallVec<[[i64; 2]; 6]>> {
-        (0..a.len()).map(|k| a.corner(k)).collect()
-    }
     // Some edge of `a` with no corner of `b` strictly on its inner side.
     fn outside(a: &[[i64; 2]], b: &[[i64; 2]]) -> bool {
         let turn = (1..a.len() - 1)
@@ -836,8 +845,7 @@ pub fn separated_at_corners(p: &Piece, q: &Piece) -> Option<bool> {
                 b.iter().all(|&v| cross_xy(c, d, v) * turn <= 0)
             })
     }
-    let (pc, qc) = (corners(p)?, corners(q)?);
-    Some(outside(&qc, &pc) || outside(&pc, &qc))
+    outside(qc, pc) || outside(pc, qc)
 }
 
 /// Are two support planes (c > 0) the same plane? Exact: their coefficients are proportional

@@ -25,7 +25,7 @@ use super::strips::Counters;
 use super::visible_set::{Fragment, VisibleSet};
 use crate::exact::Plane;
 use crate::exact::polygon::{
-    Boundary, Piece, Split, separated, separated_at_corners, separated_by_lines,
+    Boundary, Piece, Split, corners_separated, separated, separated_by_lines,
 };
 use crate::exact::predicates::Line;
 use crate::progress::{Report, Ticker};
@@ -308,6 +308,15 @@ fn front_layer(
     most_pairs: usize,
 ) -> bool {
     let open: Vec<bool> = blockers.iter().map(|&b| b == OPEN).collect();
+    // Each piece's grid corners, found once (a piece meets a dozen boxes) and kept in one flat
+    // list: piece k's are `corners[start[k]..start[k + 1]]`, none when a vertex is off the grid.
+    let (mut corners, mut start) = (Vec::new(), Vec::with_capacity(list.len() + 1));
+    start.push(0);
+    for p in list {
+        corners.extend(p.grid_corners().into_iter().flatten());
+        start.push(corners.len());
+    }
+    let corners_of = |k: usize| Some(&corners[start[k]..start[k + 1]]).filter(|c| !c.is_empty());
     let mut pairs = 0;
     box_pairs(boxes, &open, |i, j| {
         pairs += 1;
@@ -316,7 +325,9 @@ fn front_layer(
         }
         // Uncut neighbours on a surface share corners and never overlap: their corners settle
         // it before any plane test.
-        let apart = separated_at_corners(&list[i], &list[j]);
+        let apart = corners_of(i)
+            .zip(corners_of(j))
+            .map(|(a, b)| corners_separated(a, b));
         if apart == Some(true) {
             return true;
         }
@@ -666,6 +677,7 @@ pub fn translucent_layer(
 mod tests {
     use super::*;
     use crate::exact::GridPoint;
+    use crate::exact::polygon::separated_at_corners;
     use crate::visibility::screen_of_polygons;
 
     fn point([x, y, z]: [i64; 3]) -> GridPoint {
