@@ -27,7 +27,7 @@
 //! the same.
 
 use super::coverage_map::visible_pieces_of_strips;
-use super::grid::sweep_overlapping;
+use super::grid::{NO_BOX, joined, sweep_overlapping};
 use super::occlusion::unhidden_pieces;
 use super::strips::{Strips, solve_strips};
 use super::tiling::{tiles_convex_region_once, twice_hull_area, twice_ring_area};
@@ -507,19 +507,14 @@ impl Crowding {
         // The medians from an even sample of at most MEDIAN_SAMPLE pieces (a choice of method
         // needs no more), the box of all, the mean and the back share from every piece.
         let stride = n.div_ceil(MEDIAN_SAMPLE).max(1);
-        let mut all = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+        let mut all = NO_BOX;
         let mut box_sum = 0.0;
         let mut boxes = Vec::with_capacity(n.min(MEDIAN_SAMPLE));
         let mut ratios = Vec::with_capacity(n.min(MEDIAN_SAMPLE));
         let mut back = 0usize;
         for (k, p) in pieces.iter().enumerate() {
             let b = p.bounds();
-            all = [
-                all[0].min(b[0]),
-                all[1].min(b[1]),
-                all[2].max(b[2]),
-                all[3].max(b[3]),
-            ];
+            all = joined(all, &b);
             let box_area = (b[2] - b[0]).max(0.0) * (b[3] - b[1]).max(0.0);
             box_sum += box_area;
             back += !screen.polys[p.poly as usize].front as usize;

@@ -20,6 +20,7 @@
 
 use super::coverage::{Coverage, bounds, tie_key};
 use super::depth;
+use super::grid::{NO_BOX, joined};
 use super::initial_pieces;
 use super::strips::Counters;
 use super::visible_set::{Fragment, VisibleSet};
@@ -273,15 +274,10 @@ fn box_pairs(
 /// list's width than their mean height is of its height: a line across the sweep then
 /// crosses fewer boxes.
 fn sweeps_in_x(boxes: &[[f64; 4]]) -> bool {
-    let mut all = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+    let mut all = NO_BOX;
     let (mut widths, mut heights) = (0.0, 0.0);
     for b in boxes {
-        all = [
-            all[0].min(b[0]),
-            all[1].min(b[1]),
-            all[2].max(b[2]),
-            all[3].max(b[3]),
-        ];
+        all = joined(all, b);
         widths += b[2] - b[0];
         heights += b[3] - b[1];
     }

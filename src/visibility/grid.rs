@@ -2,6 +2,19 @@
 //! covers, so the boxes near a box are found in time proportional to how many there are. Boxes
 //! are a filter here, never a decision: callers test what the grid returns exactly.
 
+/// The box of no point: joined with a box, that box.
+pub(crate) const NO_BOX: [f64; 4] = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+
+/// The smallest box holding boxes `a` and `b`.
+pub(crate) fn joined(a: [f64; 4], b: &[f64; 4]) -> [f64; 4] {
+    [
+        a[0].min(b[0]),
+        a[1].min(b[1]),
+        a[2].max(b[2]),
+        a[3].max(b[3]),
+    ]
+}
+
 /// The grid. Entries are `u32` indices into the caller's own list of boxes.
 pub(crate) struct BoxGrid {
     origin: [f64; 2],
@@ -14,15 +27,7 @@ impl BoxGrid {
     /// An empty grid of about `count` cells over the union of `boxes` (at most 512 x 512 cells,
     /// at least one grid unit wide).
     pub fn over<'b>(boxes: impl IntoIterator<Item = &'b [f64; 4]>, count: usize) -> BoxGrid {
-        let mut all = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
-        for b in boxes {
-            all = [
-                all[0].min(b[0]),
-                all[1].min(b[1]),
-                all[2].max(b[2]),
-                all[3].max(b[3]),
-            ];
-        }
+        let mut all = boxes.into_iter().fold(NO_BOX, joined);
         if all[0] > all[2] {
             all = [0.0, 0.0, 1.0, 1.0];
         }
