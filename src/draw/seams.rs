@@ -138,12 +138,16 @@ pub fn straight_runs(
     let mut runs = UnionFind::new(edges.len());
     for meeting in ends.chunk_by(|a, b| a.0 == b.0) {
         for (i, &(_, s, _)) in meeting.iter().enumerate() {
+            if i + 1 == meeting.len() {
+                break;
+            }
+            // Segment s's line, approximated once for every later segment at this point.
+            let (lp, l) = edges[s].line;
+            let (lp, l) = (lp as usize, l as usize);
+            let (line, approx) = (pieces[lp].line(l), pieces[lp].line_approx(l));
             for &(_, t, end) in &meeting[i + 1..] {
-                let (lp, l) = edges[s].line;
-                let (lp, l) = (lp as usize, l as usize);
                 let (fp, fv) = edges[t].vertices[1 - end];
                 let (fp, fv) = (fp as usize, fv as usize);
-                let (line, approx) = (pieces[lp].line(l), pieces[lp].line_approx(l));
                 if pieces[fp].vertex_line_sign_with(fv, line, &approx) == Ordering::Equal {
                     runs.union(s, t);
                 }
