@@ -81,8 +81,6 @@ pub fn meetings(
         ]
     }));
     let approx: Vec<PlaneApprox> = planes.iter().map(PlaneApprox::of).collect();
-    // Convex parts, made when a pair first needs them.
-    let mut parts: Vec<Option<Vec<Vec<Line>>>> = vec![None; polys.len()];
     // Each face's welded vertex ids (distinct, in corner order), made once: every pair asks.
     let mut weld_start = Vec::with_capacity(scene.faces.len() + 1);
     let mut welds: Vec<u32> = Vec::with_capacity(3 * scene.faces.len());
@@ -105,31 +103,32 @@ pub fn meetings(
     };
     let share_an_edge = |fa: u32, fb: u32| shared(fa, fb) >= 2;
     let n = polys.len();
-    let mut out = Vec::new();
     let boxes: Vec<[f64; 6]> = boxes
         .iter()
         .zip(&depths)
         .map(|(b, d)| [b[0], b[1], d[0], b[2], b[3], d[1]])
         .collect();
-    let mut on_pair = |a: usize, b: usize| {
+    // Where two faces whose boxes meet pass through each other. Convex parts are made per
+    // pair: only pairs whose planes cross inside both polygons need them, a few in a mesh.
+    let meeting = |a: usize, b: usize| -> Option<Meeting> {
         if a >= n && b >= n {
-            return;
+            return None;
         }
         if b >= n {
             // An edge-on face and a polygon.
             let flat = &flats[b - n];
-            if !share_an_edge(flat.face, polys[a].face) {
-                let parts_a = parts[a].get_or_insert_with(|| convex_parts(screen, &polys[a]));
-                out.extend(edge_on_meeting(flat, &polys[a], &planes[a], parts_a));
+            if share_an_edge(flat.face, polys[a].face) {
+                return None;
             }
-            return;
+            let parts_a = convex_parts(screen, &polys[a]);
+            return edge_on_meeting(flat, &polys[a], &planes[a], &parts_a);
         }
         let (pa, pb) = (&polys[a], &polys[b]);
         // Faces sharing an edge meet along it only (most pairs of a mesh): decided on welded
         // ids before any plane is evaluated.
         let shared_corners = shared(pa.face, pb.face);
         if shared_corners >= 2 {
-            return;
+            return None;
         }
         // Every polygon lies in its plane (`project` splits the others), so the meeting line's
         // side at a corner is the side of the other plane the corner lies on.
@@ -137,22 +136,20 @@ pub fn meetings(
         if !straddles(screen, pb, pa, plane_a, &approx[a])
             || !straddles(screen, pa, pb, plane_b, &approx[b])
         {
-            return;
+            return None;
         }
         let line = Line::cut(*plane_a, *plane_b);
         if shared_corners == 1 && apart_beyond_corner(screen, pa, pb, &line) == Some(true) {
-            return;
+            return None;
         }
         let carrier = Carrier::new(line.clone());
         let mut extent = Vec::new();
-        parts[a].get_or_insert_with(|| convex_parts(screen, pa));
-        parts[b].get_or_insert_with(|| convex_parts(screen, pb));
-        let (parts_a, parts_b) = (parts[a].as_ref().unwrap(), parts[b].as_ref().unwrap());
-        for part_a in parts_a {
+        let (parts_a, parts_b) = (convex_parts(screen, pa), convex_parts(screen, pb));
+        for part_a in &parts_a {
             let Some(ia) = clip_to_convex(&carrier, part_a) else {
                 continue;
             };
-            for part_b in parts_b {
+            for part_b in &parts_b {
                 if let Some(ib) = clip_to_convex(&carrier, part_b)
                     && let Some(both) = overlap(&carrier, ia.clone(), ib)
                 {
@@ -160,43 +157,64 @@ pub fn meetings(
                 }
             }
         }
-        if !extent.is_empty() {
-            let (fa, fb) = (pa.face.min(pb.face), pa.face.max(pb.face));
-            let in_face_order = if pa.face < pb.face {
-                [*plane_a, *plane_b]
-            } else {
-                [*plane_b, *plane_a]
-            };
-            out.push(Meeting {
-                faces: [fa, fb],
-                planes: Some(in_face_order),
-                line,
-                depth: *plane_a,
-                extent,
-                edge_on: false,
-            });
+        if extent.is_empty() {
+            return None;
         }
+        let (fa, fb) = (pa.face.min(pb.face), pa.face.max(pb.face));
+        let in_face_order = if pa.face < pb.face {
+            [*plane_a, *plane_b]
+        } else {
+            [*plane_b, *plane_a]
+        };
+        Some(Meeting {
+            faces: [fa, fb],
+            planes: Some(in_face_order),
+            line,
+            depth: *plane_a,
+            extent,
+            edge_on: false,
+        })
     };
-    for_each_overlapping_pair(&boxes, &mut on_pair);
-    out
+    overlapping_pairs(&boxes, &meeting)
 }
 
-/// Every two boxes of `boxes` (x0, y0, z0, x1, y1, z1) whose closed extents meet, each pair
-/// once (a filter: the caller decides exactly): a bounding-volume hierarchy (median splits of
-/// the box centres on the longest axis, leaves of a few boxes) joined with itself, which copes
-/// with boxes of every size (long thin CAD triangles and fine ones). Deterministic order.
-fn for_each_overlapping_pair(boxes: &[[f64; 6]], out: &mut impl FnMut(usize, usize)) {
+/// What `decide(a, b)` (`a < b`) finds for every two boxes of `boxes` (x0, y0, z0, x1, y1, z1)
+/// whose closed extents meet, each pair once (a filter: `decide` tests exactly): a
+/// bounding-volume hierarchy (median splits of the box centres on the longest axis, leaves of
+/// a few boxes) joined with itself, which copes with boxes of every size (long thin CAD
+/// triangles and fine ones). Large parts of the join run on all cores; the results come in
+/// the order of the sequential walk whatever the thread count.
+fn overlapping_pairs<T: Send>(
+    boxes: &[[f64; 6]],
+    decide: &(impl Fn(usize, usize) -> Option<T> + Sync),
+) -> Vec<T> {
+    overlapping_pairs_splitting_at(boxes, PARALLEL_BOXES, decide)
+}
+
+/// [`overlapping_pairs`], splitting joins of at least `parallel_boxes` boxes across cores.
+fn overlapping_pairs_splitting_at<T: Send>(
+    boxes: &[[f64; 6]],
+    parallel_boxes: usize,
+    decide: &(impl Fn(usize, usize) -> Option<T> + Sync),
+) -> Vec<T> {
+    if boxes.is_empty() {
+        return Vec::new();
+    }
     let mut ids: Vec<u32> = (0..boxes.len() as u32).collect();
     let mut nodes = Vec::new();
-    if !boxes.is_empty() {
-        // Twice the box centres, made once (the median splits compare them many times).
-        let centres: Vec<[f64; 3]> = boxes
-            .iter()
-            .map(|b| [b[0] + b[3], b[1] + b[4], b[2] + b[5]])
-            .collect();
-        build(boxes, &centres, &mut ids, 0, &mut nodes);
-        join_self(&nodes, &ids, boxes, 0, out);
-    }
+    // Twice the box centres, made once (the median splits compare them many times).
+    let centres: Vec<[f64; 3]> = boxes
+        .iter()
+        .map(|b| [b[0] + b[3], b[1] + b[4], b[2] + b[5]])
+        .collect();
+    build(boxes, &centres, &mut ids, 0, &mut nodes);
+    let tree = Hierarchy {
+        nodes: &nodes,
+        ids: &ids,
+        boxes,
+        parallel_boxes,
+    };
+    tree.join_self(0, decide)
 }
 
 /// A node of the hierarchy: its box, and either its two children or its run of `ids`.
@@ -207,6 +225,9 @@ struct Node {
 }
 
 const LEAF: usize = 8;
+
+/// Joins of nodes holding at least this many boxes between them are split across cores.
+const PARALLEL_BOXES: usize = 4096;
 
 fn union(boxes: &[[f64; 6]], ids: &[u32]) -> [f64; 6] {
     let mut u = [f64::MAX, f64::MAX, f64::MAX, f64::MIN, f64::MIN, f64::MIN];
@@ -263,71 +284,120 @@ fn build(
     at
 }
 
-fn join_self(
-    nodes: &[Node],
-    ids: &[u32],
-    boxes: &[[f64; 6]],
-    n: usize,
-    out: &mut impl FnMut(usize, usize),
-) {
-    match nodes[n].children {
-        Some((l, r)) => {
-            join_self(nodes, ids, boxes, l, out);
-            join_self(nodes, ids, boxes, r, out);
-            join(nodes, ids, boxes, l, r, out);
-        }
-        None => {
-            let run = &ids[nodes[n].run.0..nodes[n].run.1];
-            for (k, &a) in run.iter().enumerate() {
-                for &b in &run[k + 1..] {
-                    if meet(&boxes[a as usize], &boxes[b as usize]) {
-                        out(a.min(b) as usize, a.max(b) as usize);
-                    }
-                }
-            }
-        }
-    }
+/// A built hierarchy, read by the joins.
+struct Hierarchy<'a> {
+    nodes: &'a [Node],
+    ids: &'a [u32],
+    boxes: &'a [[f64; 6]],
+    /// Joins of at least this many boxes run their halves side by side.
+    parallel_boxes: usize,
 }
 
-fn join(
-    nodes: &[Node],
-    ids: &[u32],
-    boxes: &[[f64; 6]],
-    a: usize,
-    b: usize,
-    out: &mut impl FnMut(usize, usize),
-) {
-    if !meet(&nodes[a].bounds, &nodes[b].bounds) {
-        return;
+impl Hierarchy<'_> {
+    fn size(&self, n: usize) -> usize {
+        self.nodes[n].run.1 - self.nodes[n].run.0
     }
-    match (nodes[a].children, nodes[b].children) {
-        (None, None) => {
-            let (ra, rb) = (nodes[a].run, nodes[b].run);
-            for &p in &ids[ra.0..ra.1] {
-                for &q in &ids[rb.0..rb.1] {
-                    if meet(&boxes[p as usize], &boxes[q as usize]) {
-                        out(p.min(q) as usize, p.max(q) as usize);
+
+    fn run(&self, n: usize) -> &[u32] {
+        &self.ids[self.nodes[n].run.0..self.nodes[n].run.1]
+    }
+
+    /// `first` then `second`, side by side on all cores when `parallel`, concatenated in that
+    /// order.
+    fn both<T: Send>(
+        parallel: bool,
+        first: impl FnOnce() -> Vec<T> + Send,
+        second: impl FnOnce() -> Vec<T> + Send,
+    ) -> Vec<T> {
+        let (mut a, b) = if parallel {
+            rayon::join(first, second)
+        } else {
+            (first(), second())
+        };
+        a.extend(b);
+        a
+    }
+
+    /// The pairs within node `n`'s boxes: within each child, then across them.
+    fn join_self<T: Send>(
+        &self,
+        n: usize,
+        decide: &(impl Fn(usize, usize) -> Option<T> + Sync),
+    ) -> Vec<T> {
+        let Some((l, r)) = self.nodes[n].children else {
+            let run = self.run(n);
+            let mut out = Vec::new();
+            for (k, &a) in run.iter().enumerate() {
+                for &b in &run[k + 1..] {
+                    if meet(&self.boxes[a as usize], &self.boxes[b as usize]) {
+                        out.extend(decide(a.min(b) as usize, a.max(b) as usize));
                     }
                 }
             }
+            return out;
+        };
+        let parallel = self.size(n) >= self.parallel_boxes;
+        Self::both(
+            parallel,
+            || {
+                Self::both(
+                    parallel,
+                    || self.join_self(l, decide),
+                    || self.join_self(r, decide),
+                )
+            },
+            || self.join(l, r, decide),
+        )
+    }
+
+    /// The pairs of a box of node `a` and one of node `b`.
+    fn join<T: Send>(
+        &self,
+        a: usize,
+        b: usize,
+        decide: &(impl Fn(usize, usize) -> Option<T> + Sync),
+    ) -> Vec<T> {
+        if !meet(&self.nodes[a].bounds, &self.nodes[b].bounds) {
+            return Vec::new();
         }
-        // Split the node that has more boxes (or the only inner one).
-        (Some((l, r)), None) => {
-            join(nodes, ids, boxes, l, b, out);
-            join(nodes, ids, boxes, r, b, out);
-        }
-        (None, Some((l, r))) => {
-            join(nodes, ids, boxes, a, l, out);
-            join(nodes, ids, boxes, a, r, out);
-        }
-        (Some((al, ar)), Some((bl, br))) => {
-            let size = |n: usize| nodes[n].run.1 - nodes[n].run.0;
-            if size(a) >= size(b) {
-                join(nodes, ids, boxes, al, b, out);
-                join(nodes, ids, boxes, ar, b, out);
-            } else {
-                join(nodes, ids, boxes, a, bl, out);
-                join(nodes, ids, boxes, a, br, out);
+        let parallel = self.size(a) + self.size(b) >= self.parallel_boxes;
+        match (self.nodes[a].children, self.nodes[b].children) {
+            (None, None) => {
+                let mut out = Vec::new();
+                for &p in self.run(a) {
+                    for &q in self.run(b) {
+                        if meet(&self.boxes[p as usize], &self.boxes[q as usize]) {
+                            out.extend(decide(p.min(q) as usize, p.max(q) as usize));
+                        }
+                    }
+                }
+                out
+            }
+            // Split the node that has more boxes (or the only inner one).
+            (Some((l, r)), None) => Self::both(
+                parallel,
+                || self.join(l, b, decide),
+                || self.join(r, b, decide),
+            ),
+            (None, Some((l, r))) => Self::both(
+                parallel,
+                || self.join(a, l, decide),
+                || self.join(a, r, decide),
+            ),
+            (Some((al, ar)), Some((bl, br))) => {
+                if self.size(a) >= self.size(b) {
+                    Self::both(
+                        parallel,
+                        || self.join(al, b, decide),
+                        || self.join(ar, b, decide),
+                    )
+                } else {
+                    Self::both(
+                        parallel,
+                        || self.join(a, bl, decide),
+                        || self.join(a, br, decide),
+                    )
+                }
             }
         }
     }
@@ -529,4 +599,75 @@ pub(crate) fn overlap(carrier: &Carrier, a: (At, At), b: (At, At)) -> Option<(At
     let lo = carrier.param(&a.0).max(carrier.param(&b.0));
     let hi = carrier.param(&a.1).min(carrier.param(&b.1));
     (lo < hi).then(|| (lo.at(), hi.at()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::{Camera, NamedView};
+    use crate::project::{CullMode, project};
+    use crate::scene::analysis::analyse;
+    use crate::scene::primitives::interpenetrating_tori;
+
+    /// The join split across cores at every size finds every pair of meeting boxes once, in
+    /// the order of the sequential walk, on four threads.
+    #[test]
+    fn the_parallel_join_is_the_sequential_walk() {
+        let mut seed = 5u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let boxes: Vec<[f64; 6]> = (0..3000)
+            .map(|_| {
+                let (x, y, z, s) = (next(), next(), next(), 0.1 * next());
+                [x, y, z, x + s, y + s, z + s]
+            })
+            .collect();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(4)
+            .build()
+            .expect("a pool");
+        let pair = |a: usize, b: usize| Some((a, b));
+        let sequential = overlapping_pairs_splitting_at(&boxes, usize::MAX, &pair);
+        let parallel = pool.install(|| overlapping_pairs_splitting_at(&boxes, 2, &pair));
+        assert_eq!(parallel, sequential);
+        let mut sorted = sequential.clone();
+        sorted.sort();
+        let brute: Vec<(usize, usize)> = (0..boxes.len())
+            .flat_map(|a| (a + 1..boxes.len()).map(move |b| (a, b)))
+            .filter(|&(a, b)| meet(&boxes[a], &boxes[b]))
+            .collect();
+        assert_eq!(sorted, brute);
+        assert!(brute.len() > 1000, "{} pairs", brute.len());
+    }
+
+    /// Two interpenetrating tori of 10,240 triangles: the hierarchy's join splits across cores
+    /// above [`PARALLEL_BOXES`], and the meetings found on one thread and on four are the same
+    /// list, in the same order.
+    #[test]
+    fn meetings_are_the_same_on_one_thread_and_on_four() {
+        let scene = interpenetrating_tori(64, 40);
+        assert!(scene.faces.len() > 2 * PARALLEL_BOXES);
+        let bounds = scene.bounds().expect("tori have bounds");
+        let camera = Camera::fit(NamedView::Iso, bounds, false, 40.0, 256, 256);
+        let screen = project(&scene, &analyse(&scene), &camera, CullMode::Off);
+        let weld: Vec<u32> = (0..scene.positions.len() as u32).collect();
+        let on = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("a pool");
+            let found = pool.install(|| meetings(&scene, &screen, &[], &weld));
+            found
+                .iter()
+                .map(|m| format!("{:?} {:?} {:?}", m.faces, m.line, m.extent))
+                .collect::<Vec<_>>()
+        };
+        let one = on(1);
+        assert!(one.len() > 100, "{} meetings", one.len());
+        assert_eq!(one, on(4));
+    }
 }
