@@ -287,9 +287,11 @@ impl<T> PerVertex<T> {
         self.start[a]
     }
 
-    /// The piece whose values include number `index` of the flat list.
-    pub fn piece_of(&self, index: usize) -> usize {
-        self.start.partition_point(|&s| s <= index) - 1
+    /// Per number of the flat list, the piece whose value it is (a table, for many look-ups).
+    pub fn owners(&self) -> Vec<u32> {
+        (0..self.len() as u32)
+            .flat_map(|a| std::iter::repeat_n(a, self[a as usize].len()))
+            .collect()
     }
 
     /// Every piece's values, in piece order.
@@ -391,15 +393,17 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
 /// at most one other piece (a third with either edge would overlap the one with the same).
 fn edge_partners(ids: &PerVertex<u32>) -> Vec<u32> {
     let mut partners = vec![Vertices::ALONE; ids.vertex_count()];
-    // Edges named by their flat number: fewer than 2^32, as the vertex ids are.
+    // Edges named by their flat number: fewer than 2^32, as the vertex ids are. Each edge's
+    // piece from a table (a search per pair cost a tenth of naming the vertices).
+    let piece_of = ids.owners();
     let edges = (0..ids.len()).flat_map(|a| {
         let (v, first) = (&ids[a], ids.first(a));
         (0..v.len()).map(move |k| ((v[k], v[(k + 1) % v.len()]), (first + k) as u32))
     });
     for (e, f) in cancelling_pairs(edges, ids.vertex_count()) {
         let (e, f) = (e as usize, f as usize);
-        partners[e] = ids.piece_of(f) as u32;
-        partners[f] = ids.piece_of(e) as u32;
+        partners[e] = piece_of[f];
+        partners[f] = piece_of[e];
     }
     partners
 }
@@ -804,14 +808,16 @@ impl Group<'_> {
 /// same two points in opposite directions: each edge pairs with at most one, in name order.
 /// `count` is the number of edges (room made once: a list grown by doubling holds its old room
 /// and its new one at once, on a million pieces 26 MB and 52).
-fn cancelling_pairs<E: Copy + Ord>(
+fn cancelling_pairs<E: Copy + Ord + Send>(
     edges: impl Iterator<Item = ((u32, u32), E)>,
     count: usize,
 ) -> Vec<(E, E)> {
+    use rayon::slice::ParallelSliceMut;
     // (the two ends, smaller first; whether the edge runs from the larger; the edge)
     let mut keyed: Vec<(u64, bool, E)> = Vec::with_capacity(count);
     keyed.extend(edges.map(|((a, b), e)| (((a.min(b) as u64) << 32) | a.max(b) as u64, a > b, e)));
-    keyed.sort_unstable();
+    // The names are distinct: one order whatever the sort.
+    keyed.par_sort_unstable();
     let mut pairs = Vec::new();
     for run in keyed.chunk_by(|x, y| x.0 == y.0) {
         let split = run.partition_point(|x| !x.1);
@@ -1128,8 +1134,7 @@ pub(super) mod tests {
             pieces,
             [&[10, 11, 12][..], &[20, 21, 22, 23], &[30, 31, 32]]
         );
-        let owners: Vec<usize> = (0..10).map(|i| v.piece_of(i)).collect();
-        assert_eq!(owners, [0, 0, 0, 1, 1, 1, 1, 2, 2, 2]);
+        assert_eq!(v.owners(), [0, 0, 0, 1, 1, 1, 1, 2, 2, 2]);
         assert_eq!((v.first(0), v.first(1), v.first(2)), (0, 3, 7));
         assert!(PerVertex::<u32>::default().is_empty());
     }
