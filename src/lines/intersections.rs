@@ -613,13 +613,8 @@ mod tests {
     /// the order of the sequential walk, on four threads.
     #[test]
     fn the_parallel_join_is_the_sequential_walk() {
-        let mut seed = 5u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::scene::primitives::SplitMix64(5);
+        let mut next = || rng.next_f64();
         let boxes: Vec<[f64; 6]> = (0..3000)
             .map(|_| {
                 let (x, y, z, s) = (next(), next(), next(), 0.1 * next());

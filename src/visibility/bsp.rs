@@ -750,13 +750,8 @@ mod tests {
     /// (splits, bags, cut pieces).
     #[test]
     fn disjoint_groups_cover_as_pieces_one_by_one_do() {
-        let mut seed = 11u64;
-        let mut next = |m: i64| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 33) as i64 % m
-        };
+        let mut rng = crate::scene::primitives::SplitMix64(11);
+        let mut next = |m: i64| (rng.next_u64() % m as u64) as i64;
         let soup: Vec<Vec<GridPoint>> = (0..120)
             .map(|_| {
                 (0..3)
