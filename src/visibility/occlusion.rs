@@ -86,7 +86,7 @@ pub(crate) fn unhidden_pieces(screen: &ScreenScene, polys: &[u32]) -> (Vec<Piece
 /// from the end, the inputs popped from theirs and giving back their room as they empty, then
 /// reversed: the inputs and the result are never all whole in memory (on an open mesh of a
 /// million triangles, a second whole list of pieces was the process's peak).
-fn merged(a: Vec<Piece>, b: Vec<Piece>) -> Vec<Piece> {
+pub(crate) fn merged(a: Vec<Piece>, b: Vec<Piece>) -> Vec<Piece> {
     merged_by(a, b, |p| p.poly)
 }
 
