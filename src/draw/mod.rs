@@ -157,6 +157,8 @@ pub fn draw(
         }
     };
     let group_of = |p: &Piece| group[p.poly as usize];
+    // The maps that named the vertices are gone; the regions are the drawing's peak.
+    crate::memory::give_back_after(opaque.len());
     // The regions, the seam strokes and the outline read the same pieces and vertices, each on
     // its own: on all cores.
     let seams = options.seams && !opaque.is_empty();
@@ -169,7 +171,12 @@ pub fn draw(
         },
         || {
             rayon::join(
-                || seams.then(|| seam_strokes(opaque, &vertices, &group_of, &color)),
+                || {
+                    let strokes = seams.then(|| seam_strokes(opaque, &vertices, &group_of, &color));
+                    // The shared edges' room, back while the regions still grow.
+                    crate::memory::give_back_after(opaque.len());
+                    strokes
+                },
                 || seams.then(|| outline(opaque, &vertices)),
             )
         },

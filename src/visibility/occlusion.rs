@@ -78,7 +78,10 @@ pub(crate) fn unhidden_pieces(screen: &ScreenScene, polys: &[u32]) -> (Vec<Piece
         .copied()
         .collect();
     dropped += whole.len() - shown.len();
-    (merged(made, pieces_of(screen, &shown)), dropped)
+    let unhidden = merged(made, pieces_of(screen, &shown));
+    // The cells' and the dropped pieces' room, back before the caller cuts and solves.
+    crate::memory::give_back_after(polys.len());
+    (unhidden, dropped)
 }
 
 /// Two lists of pieces, each in increasing polygon order, as one in that order (the order the

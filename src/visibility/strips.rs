@@ -20,6 +20,7 @@
 use super::bsp::screen_line;
 use crate::exact::polygon::{Boundary, Piece, Split};
 use crate::exact::predicates::{add_fallbacks, fallback_count, reset_fallbacks};
+use crate::memory::GiveBackEvery;
 use crate::progress::{Report, Ticker};
 use rayon::prelude::*;
 use std::cell::Cell;
@@ -217,6 +218,9 @@ pub(crate) fn solve_strips<C: Counters>(
     let total: usize = strips.iter().map(Vec::len).sum();
     let ticker = Mutex::new((Ticker::new(report, "visible set", total as u64), 0u64));
     let own_before = fallback_count();
+    // Each strip's input, freed by `solve`, goes to the arena of the thread that cut the
+    // strips, out of the solving threads' reach: handed back as strips finish.
+    let consumed = GiveBackEvery::default();
     // Per strip: what `solve` returned, and the exact fallbacks it counted.
     type Solved<C> = (Result<(Vec<Piece>, C), Vec<Piece>>, u64);
     let solved: Vec<Solved<C>> = strips
@@ -226,6 +230,7 @@ pub(crate) fn solve_strips<C: Counters>(
             let before = fallback_count();
             let out = solve(pieces, None);
             let fallbacks = fallback_count() - before;
+            consumed.freed(n as usize);
             let mut t = ticker.lock().unwrap_or_else(|e| e.into_inner());
             t.1 += n;
             let done = t.1;
@@ -255,16 +260,13 @@ pub(crate) fn solve_strips<C: Counters>(
         .sum();
     let mut pieces = Vec::with_capacity(total);
     let mut counters = C::default();
-    let mut freed = 0;
+    let joined = GiveBackEvery::default();
     // Every strip is `Ok` (checked above).
     for (p, c) in solved.into_iter().filter_map(|s| s.0.ok()) {
-        freed += p.len();
+        let n = p.len();
         pieces.extend(p);
         counters.add(&c);
-        if freed >= crate::memory::LARGE {
-            crate::memory::give_back_after(freed);
-            freed = 0;
-        }
+        joined.freed(n);
     }
     Ok((pieces, counters))
 }
