@@ -235,8 +235,8 @@ fn sides_of_screen_polygons_name_face_edges_and_clip_planes() {
     assert_eq!(screen.polys.len(), 2);
     let quad = screen.sides(&screen.polys[0]);
     assert_eq!(
-        quad,
-        &[
+        quad[..],
+        [
             Side::Edge(0),
             Side::Edge(1),
             Side::Clip(ClipPlane::Near),
@@ -245,7 +245,7 @@ fn sides_of_screen_polygons_name_face_edges_and_clip_planes() {
         "the near plane cuts edges 1 and 3 and replaces edge 2"
     );
     let tri = screen.sides(&screen.polys[1]);
-    assert_eq!(tri, &[Side::Edge(0), Side::Edge(1), Side::Edge(2)]);
+    assert_eq!(tri[..], [Side::Edge(0), Side::Edge(1), Side::Edge(2)]);
     check_scene(&scene, &camera);
 }
 

@@ -219,7 +219,7 @@ pub fn line_tracks(
         ));
     }
     // Every screen side's track.
-    let mut of_side = vec![u32::MAX; screen.sides.len()];
+    let mut of_side = vec![u32::MAX; screen.corner_points.len()];
     for poly in &screen.polys {
         let face = &scene.faces[poly.face as usize];
         for (j, side) in screen.sides(poly).iter().enumerate() {
