@@ -73,10 +73,10 @@ pub enum Boundary {
 /// Layout: up to four vertices (triangles and quads, most of the pieces any scene makes) live
 /// inline, so making, splitting and dropping such a piece allocates nothing (a piece of a triangle
 /// is one allocation-free record, where seven parallel `Vec`s made seven); a piece of more
-/// vertices keeps them in one heap array. 344 bytes: it kept its polygon's grid frame too
-/// (376), which only tightened [`Piece::bounds`] by at most a vertex's error bound; without it
-/// the 1M sphere's `--method bsp` peaks at 527-531 MB instead of 576-577, for 0.1-0.2 % more
-/// exact fallbacks in the BSP (boxes looser by that bound).
+/// vertices keeps them in one heap array. 312 bytes (72 a vertex). It kept its polygon's grid
+/// frame too (376 bytes then), which only tightened [`Piece::bounds`] by at most a vertex's
+/// error bound; without it the 1M sphere's `--method bsp` peaked at 527-531 MB instead of
+/// 576-577, for 0.1-0.2 % more exact fallbacks in the BSP (boxes looser by that bound).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Piece {
     /// Index of the screen polygon (face) it belongs to.
@@ -90,7 +90,8 @@ pub struct Piece {
 }
 
 /// Vertex k of a piece and its line k (from vertex k to vertex k + 1), with what the exact
-/// tests cache about the vertex: 80 bytes. The line's f64 coefficients are not cached
+/// tests cache about the vertex: 72 bytes (80 with a 12-byte [`Boundary`] and an f64 error
+/// bound: the 1M sphere's `--method bsp` peaked 12 MB higher). The line's f64 coefficients are not cached
 /// ([`Line::approx`] computes them when a test needs them): a 48-byte cache per vertex made
 /// every piece 568 bytes instead of 376, and pieces are moved by value at every split. Without
 /// it, `render bunny` (one thread) runs 2 % more instructions, no more time (medians of
@@ -100,19 +101,21 @@ pub struct Piece {
 struct Vertex {
     /// Line k: the boundary line from this vertex to the next; the piece is on its positive side.
     line: Line,
-    /// The vertex in f64 grid coordinates with a proven error bound, (x, y, e): the exact vertex
-    /// is within e of (x, y) in each coordinate (e = 0 at grid corners, at most
+    /// The vertex in f64 grid coordinates (x, y), with a proven error bound `error` (e): the
+    /// exact vertex is within e of (x, y) in each coordinate (e = 0 at grid corners, at most
     /// [`Piece::POINT_ERROR_MAX`] elsewhere; see [`point_of`]). Computed once when the vertex is
     /// made: sign tests against many lines then cost a dot product each
-    /// ([`LineApprox::sign_at`]).
-    point: [f64; 3],
+    /// ([`LineApprox::sign_at`]). Read as (x, y, e) by [`Vertex::point`].
+    xy: [f64; 2],
+    /// The bound e of `xy`, rounded up to an f32 (so still a bound; 0 stays 0).
+    error: f32,
     /// Where line k comes from.
-    boundary: Boundary,
+    boundary: PackedBoundary,
     /// Is the vertex a grid point (an input corner, or two face edges crossing exactly at a
     /// mesh vertex)? Exact fast paths use its grid coordinates. They are `point`'s x and y,
     /// which hold them exactly (grid coordinates are integers of at most 2^53, every one an
-    /// f64), with e = 0: a flag instead of an `Option<[i64; 2]>` keeps the record at 80 bytes
-    /// instead of 104.
+    /// f64), with e = 0: a flag instead of an `Option<[i64; 2]>` keeps the record at 72 bytes
+    /// instead of 96.
     is_corner: bool,
     /// Does line k run along an edge of the face's own outline (a [`Line::Edge`] whose both ends
     /// lie on the support plane, the side of the piece within them)? Then a sign that agrees at
@@ -123,10 +126,94 @@ struct Vertex {
 }
 
 impl Vertex {
+    /// The vertex at `point` on `line`, which comes from `boundary`.
+    fn new(line: Line, point: VertexPoint, boundary: Boundary, on_face_edge: bool) -> Vertex {
+        let mut v = Vertex {
+            line,
+            xy: [0.0; 2],
+            error: 0.0,
+            boundary: PackedBoundary::from(boundary),
+            is_corner: false,
+            on_face_edge,
+        };
+        v.set_point(point);
+        v
+    }
+
+    /// The vertex as (x, y, e): see [`Vertex::xy`].
+    #[inline]
+    fn point(&self) -> [f64; 3] {
+        [self.xy[0], self.xy[1], self.error as f64]
+    }
+
+    /// Moves the vertex to `point`.
+    fn set_point(&mut self, (is_corner, [x, y, e]): VertexPoint) {
+        debug_assert!(e >= 0.0 && e.is_finite());
+        let rounded = e as f32;
+        self.error = if (rounded as f64) < e {
+            rounded.next_up()
+        } else {
+            rounded
+        };
+        self.xy = [x, y];
+        self.is_corner = is_corner;
+    }
+
     #[inline]
     fn corner(&self) -> Option<[i64; 2]> {
         self.is_corner
-            .then(|| [self.point[0] as i64, self.point[1] as i64])
+            .then(|| [self.xy[0] as i64, self.xy[1] as i64])
+    }
+}
+
+/// A [`Boundary`] in 8 bytes (the enum takes 12): the variant in the top two bits of the first
+/// word, beside a polygon index (below 2^30: a screen of that many polygons would need hundreds
+/// of gigabytes), the second word the other field.
+#[derive(Clone, Copy, PartialEq, Eq)]
+struct PackedBoundary([u32; 2]);
+
+impl PackedBoundary {
+    const SHIFT: u32 = 30;
+    const INDEX: u32 = (1 << Self::SHIFT) - 1;
+
+    /// The boundary packed.
+    #[inline]
+    fn unpack(self) -> Boundary {
+        let [first, second] = self.0;
+        let index = first & Self::INDEX;
+        match first >> Self::SHIFT {
+            0 => Boundary::Outline {
+                poly: index,
+                side: second,
+            },
+            1 => Boundary::Diagonal { poly: index },
+            2 => Boundary::Cut {
+                a: index,
+                b: second,
+            },
+            _ => Boundary::ScreenSplit,
+        }
+    }
+}
+
+impl From<Boundary> for PackedBoundary {
+    fn from(b: Boundary) -> Self {
+        let with = |variant: u32, index: u32, second: u32| {
+            assert!(index <= Self::INDEX, "polygon index {index} below 2^30");
+            PackedBoundary([variant << Self::SHIFT | index, second])
+        };
+        match b {
+            Boundary::Outline { poly, side } => with(0, poly, side),
+            Boundary::Diagonal { poly } => with(1, poly, 0),
+            Boundary::Cut { a, b } => with(2, a, b),
+            Boundary::ScreenSplit => with(3, 0, 0),
+        }
+    }
+}
+
+impl std::fmt::Debug for PackedBoundary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.unpack().fmt(f)
     }
 }
 
@@ -194,14 +281,7 @@ impl Piece {
             .map(|k| {
                 let (c, next) = (corners[k], corners[(k + 1) % n]);
                 let line = Line::edge(c, next).expect("consecutive corners differ");
-                let (is_corner, point) = grid_point([c.x, c.y]);
-                Vertex {
-                    line,
-                    point,
-                    boundary: boundaries[k],
-                    is_corner,
-                    on_face_edge: true,
-                }
+                Vertex::new(line, grid_point([c.x, c.y]), boundaries[k], true)
             })
             .collect();
         Piece {
@@ -235,12 +315,12 @@ impl Piece {
     /// Where line k comes from.
     #[inline]
     pub fn boundary(&self, k: usize) -> Boundary {
-        self.vertices[k].boundary
+        self.vertices[k].boundary.unpack()
     }
 
     /// Where each line comes from, in the order of [`Self::lines`].
     pub fn boundaries(&self) -> impl ExactSizeIterator<Item = Boundary> + Clone {
-        self.vertices.iter().map(|v| v.boundary)
+        self.vertices.iter().map(|v| v.boundary.unpack())
     }
 
     /// The grid (x, y) of vertex k when it is a grid point (an input corner, or two face edges
@@ -274,12 +354,12 @@ impl Piece {
     /// Vertex k in f64 with its proven error bound (x, y, e): see [`Vertex::point`].
     #[inline]
     pub(crate) fn point(&self, k: usize) -> [f64; 3] {
-        self.vertices[k].point
+        self.vertices[k].point()
     }
 
     /// The points of [`Self::point`], in order.
     pub(crate) fn points(&self) -> impl ExactSizeIterator<Item = [f64; 3]> + Clone {
-        self.vertices.iter().map(|v| v.point)
+        self.vertices.iter().map(Vertex::point)
     }
 
     /// `line(k).approx()`.
@@ -581,7 +661,7 @@ impl Piece {
         loop {
             let mut v = self.vertices[k].clone();
             if k == start {
-                (v.is_corner, v.point) = first;
+                v.set_point(first);
             }
             vertices.push(v);
             if k == last_kept {
@@ -589,13 +669,12 @@ impl Piece {
             }
             k = (k + 1) % n;
         }
-        vertices.push(Vertex {
-            line: closing,
-            point: last_point,
-            boundary: origin,
-            is_corner: last_is_corner,
-            on_face_edge: false,
-        });
+        vertices.push(Vertex::new(
+            closing,
+            (last_is_corner, last_point),
+            origin,
+            false,
+        ));
         Piece {
             poly: self.poly,
             support: self.support.clone(),
@@ -1208,15 +1287,43 @@ mod tests {
         }
     }
 
-    /// The layout the module docs promise (64-bit targets): a 40-byte line, an 80-byte vertex
+    /// Every boundary comes back from its 8-byte record as it went in, the largest polygon
+    /// index too; one past it is refused, never folded into another boundary.
+    #[test]
+    fn packed_boundaries_unpack_to_what_was_packed() {
+        let top = PackedBoundary::INDEX;
+        let all = [
+            Boundary::Outline { poly: 0, side: 0 },
+            Boundary::Outline {
+                poly: top,
+                side: u32::MAX,
+            },
+            Boundary::Diagonal { poly: 7 },
+            Boundary::Diagonal { poly: top },
+            Boundary::Cut { a: 3, b: 9 },
+            Boundary::Cut {
+                a: top,
+                b: u32::MAX,
+            },
+            Boundary::ScreenSplit,
+        ];
+        for b in all {
+            assert_eq!(PackedBoundary::from(b).unpack(), b);
+        }
+        let too_far =
+            std::panic::catch_unwind(|| PackedBoundary::from(Boundary::Diagonal { poly: top + 1 }));
+        assert!(too_far.is_err());
+    }
+
+    /// The layout the module docs promise (64-bit targets): a 40-byte line, a 72-byte vertex
     /// record, four of them inline.
     #[test]
     #[cfg(target_pointer_width = "64")]
     fn layout_sizes() {
         use std::mem::size_of;
         assert_eq!(size_of::<Line>(), 40);
-        assert_eq!(size_of::<Vertex>(), 80);
-        assert_eq!(size_of::<Piece>(), 344);
+        assert_eq!(size_of::<Vertex>(), 72);
+        assert_eq!(size_of::<Piece>(), 312);
         // Splitting a triangle by a line through none of its corners: a triangle and a quad,
         // both inline.
         let c = [
