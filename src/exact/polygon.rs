@@ -70,13 +70,17 @@ pub enum Boundary {
 /// grid facts together in one [`Vertex`] record; the records are private (read through
 /// [`Piece::line`], [`Piece::corner`] and the like) so that nothing else can make them disagree.
 ///
-/// Layout: up to four vertices (triangles and quads, most of the pieces any scene makes) live
-/// inline, so making, splitting and dropping such a piece allocates nothing (a piece of a triangle
-/// is one allocation-free record, where seven parallel `Vec`s made seven); a piece of more
-/// vertices keeps them in one heap array. 312 bytes (72 a vertex). It kept its polygon's grid
-/// frame too (376 bytes then), which only tightened [`Piece::bounds`] by at most a vertex's
-/// error bound; without it the 1M sphere's `--method bsp` peaked at 527-531 MB instead of
-/// 576-577, for 0.1-0.2 % more exact fallbacks in the BSP (boxes looser by that bound).
+/// Layout: up to three vertices live inline, so making, splitting and dropping a triangle
+/// allocates nothing (one allocation-free record, where seven parallel `Vec`s made seven); a
+/// piece of more vertices keeps them in one heap array. 240 bytes (72 a vertex). Room for four
+/// inline (312 bytes) left a slot unused in most pieces of most scenes, triangles (92 % of the
+/// 1M sphere's visible pieces, 91 % of dragon's): with three, that sphere's `--method bsp`
+/// peaks at 385-394 MB instead of 402-411 and runs no slower (bunny, counter, xarm6_link2,
+/// dragon, soups, interleaved), though a triangle split in two now makes a quad on the heap.
+/// It kept its polygon's grid frame too (376 bytes then), which only tightened
+/// [`Piece::bounds`] by at most a vertex's error bound; without it the 1M sphere's `--method
+/// bsp` peaked at 527-531 MB instead of 576-577, for 0.1-0.2 % more exact fallbacks in the BSP
+/// (boxes looser by that bound).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Piece {
     /// Index of the screen polygon (face) it belongs to.
@@ -86,7 +90,7 @@ pub struct Piece {
     pub support: Arc<Plane>,
     /// Vertex k and the line leaving it, counter-clockwise: vertex k is where lines k-1 and k
     /// cross.
-    vertices: SmallVec<[Vertex; 4]>,
+    vertices: SmallVec<[Vertex; 3]>,
 }
 
 /// Vertex k of a piece and its line k (from vertex k to vertex k + 1), with what the exact
@@ -1316,16 +1320,16 @@ mod tests {
     }
 
     /// The layout the module docs promise (64-bit targets): a 40-byte line, a 72-byte vertex
-    /// record, four of them inline.
+    /// record, three of them inline.
     #[test]
     #[cfg(target_pointer_width = "64")]
     fn layout_sizes() {
         use std::mem::size_of;
         assert_eq!(size_of::<Line>(), 40);
         assert_eq!(size_of::<Vertex>(), 72);
-        assert_eq!(size_of::<Piece>(), 312);
-        // Splitting a triangle by a line through none of its corners: a triangle and a quad,
-        // both inline.
+        assert_eq!(size_of::<Piece>(), 240);
+        // Splitting a triangle by a line through none of its corners: a triangle, inline, and
+        // a quad, on the heap.
         let c = [
             GridPoint::new(0, 0, 0),
             GridPoint::new(100, 0, 0),
@@ -1342,7 +1346,7 @@ mod tests {
             panic!()
         };
         assert_eq!((neg.len(), pos.len()), (3, 4));
-        assert!(!tri.vertices.spilled() && !neg.vertices.spilled() && !pos.vertices.spilled());
+        assert!(!tri.vertices.spilled() && !neg.vertices.spilled() && pos.vertices.spilled());
         // The corners the split kept are grid points still, the new ones too (x = 50 on the
         // grid), read back exactly from the f64 points.
         let mut quad: Vec<_> = (0..4).map(|k| pos.corner(k)).collect();
