@@ -26,7 +26,7 @@ use crate::camera::Camera;
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
 use crate::output::canonical::canonicalize;
-use crate::output::drawing::{DrawItem, Drawing, SeamStroke, Seams};
+use crate::output::drawing::{DrawItem, Drawing, Rings, SeamStroke, Seams};
 use crate::paint::{Fill, Paint, to_u8};
 use crate::progress::Report;
 use crate::project::ScreenScene;
@@ -145,7 +145,7 @@ pub fn draw(
         },
         || shared_vertices(opaque, &samples),
     );
-    let item = |poly: u32, faces: &[u32], rings: Vec<Vec<[f64; 2]>>| {
+    let item = |poly: u32, faces: &[u32], rings: Rings| {
         let p = paints[poly as usize];
         DrawItem {
             face: faces[0],
@@ -198,7 +198,7 @@ pub fn draw(
                 Fragment::Polygon(_) => None,
             })
             .collect();
-        let mut rings: Vec<Vec<[f64; 2]>> = regions(&pieces, screen, |_| ())
+        let mut rings: Rings = regions(&pieces, screen, |_| ())
             .into_iter()
             .flat_map(|r| r.rings)
             .collect();

@@ -32,6 +32,7 @@
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::crossing_rounded;
+use crate::output::drawing::Rings;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
@@ -56,7 +57,7 @@ pub struct Region {
     /// Rings, pixel coordinates, y down; even-odd. The first is the ring holding the smallest
     /// (y, x) rounded vertex, the outer ring unless a hole's top vertex rounds onto the outer
     /// ring's top row further left; [`crate::output::canonical`] decides holes by containment.
-    pub rings: Vec<Vec<[f64; 2]>>,
+    pub rings: Rings,
 }
 
 /// The regions of `pieces` (disjoint), grouped by `key`: groups in key order, and within a
@@ -540,7 +541,7 @@ struct Merged {
     /// Indices of its pieces (into the slice given to [`merge`]), ascending.
     members: Vec<usize>,
     /// Outer ring, then holes (ordered by their smallest vertex); pixels, even-odd.
-    rings: Vec<Vec<[f64; 2]>>,
+    rings: Rings,
 }
 
 /// A vertex of a piece: the exact point a boundary point is, to test it against lines.
@@ -569,7 +570,7 @@ fn merge(pieces: &[Piece], vertices: &Vertices, members: &[usize]) -> Vec<Merged
         // A strictly convex piece: every vertex is a corner.
         return vec![Merged {
             members: vec![*only],
-            rings: vec![vertices.pixels[*only].to_vec()],
+            rings: smallvec::smallvec![vertices.pixels[*only].to_vec()],
         }];
     }
     let group = Group {
@@ -579,7 +580,7 @@ fn merge(pieces: &[Piece], vertices: &Vertices, members: &[usize]) -> Vec<Merged
     };
     let (boundary, mut components) = group.boundary();
     let graph = Boundary::new(&group, boundary);
-    let mut by_component: BTreeMap<usize, Vec<Vec<[f64; 2]>>> = BTreeMap::new();
+    let mut by_component: BTreeMap<usize, Rings> = BTreeMap::new();
     // A cycle of fewer than three corners bounds nothing (only overlapping input makes one).
     for (owner, ring) in graph.cycles(&group).into_iter().filter(|c| c.1.len() >= 3) {
         by_component

@@ -8,6 +8,13 @@
 
 use crate::scene::FaceId;
 
+/// A closed ring of points in pixels (y down), the last point not repeated.
+pub type Ring = Vec<[f64; 2]>;
+
+/// The rings of an item: the first inline (most regions are one outer ring: a list of one on
+/// the heap cost 32 bytes more a region, 8 MB on a million triangles), more on the heap.
+pub type Rings = smallvec::SmallVec<[Ring; 1]>;
+
 /// One filled region of one face.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DrawItem {
@@ -19,7 +26,7 @@ pub struct DrawItem {
     /// Index into `Scene::materials`.
     pub material: u32,
     /// Closed rings (the last point is not repeated), pixels, y down; even-odd fill.
-    pub rings: Vec<Vec<[f64; 2]>>,
+    pub rings: Rings,
     /// Fill colour, linear RGB in \[0,1\].
     pub color: [f64; 3],
     /// 1 - transparency.
@@ -28,12 +35,12 @@ pub struct DrawItem {
 
 impl DrawItem {
     /// A region of one face in material 0, merging no other face.
-    pub fn new(face: FaceId, rings: Vec<Vec<[f64; 2]>>, color: [f64; 3], opacity: f64) -> Self {
+    pub fn new(face: FaceId, rings: Vec<Ring>, color: [f64; 3], opacity: f64) -> Self {
         DrawItem {
             face,
             merged: Vec::new(),
             material: 0,
-            rings,
+            rings: Rings::from_vec(rings),
             color,
             opacity,
         }
