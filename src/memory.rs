@@ -10,8 +10,8 @@
 //! Called where a stage's freed room would otherwise sit beside the next stage's peak (the 1M
 //! sphere file under `--method bsp`, VmRSS by probes): between the visible set and the drawing
 //! (`render::compute`: 215 MB of the visible set's room was still resident there); after the
-//! pieces the occlusion cells leave (`occlusion::unhidden_pieces`: ~100 MB of cells and dropped pieces); as strips
-//! are solved, every [`LARGE`] pieces their solvers consumed ([`GiveBackEvery`] in
+//! pieces the occlusion cells leave (`occlusion::unhidden_pieces`: ~100 MB of cells and
+//! dropped pieces); as strips are solved, every [`LARGE`] pieces their solvers consumed ([`GiveBackEvery`] in
 //! `strips::solve_strips`: each strip's input is freed into the arena of the thread that cut
 //! it, where the solving threads cannot reuse it; the solve's high-water 512-518 -> 434 MB);
 //! while the strips' visible pieces are joined into one list (481 -> 682 MB otherwise); and in

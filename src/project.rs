@@ -195,14 +195,7 @@ impl ScreenScene {
 
     /// Where the sides of `p` come from: side k runs from corner k to corner k + 1.
     pub fn sides(&self, p: &ScreenPoly) -> Sides {
-        let listed = &self.listed_sides;
-        let at = listed.partition_point(|&(corner, _)| corner < p.start);
-        match listed.get(at) {
-            Some(&(corner, _)) if corner == p.start => (listed[at..at + p.len as usize].iter())
-                .map(|&(_, side)| side)
-                .collect(),
-            _ => (0..p.len).map(Side::Edge).collect(),
-        }
+        sides_of(&self.listed_sides, p.start, p.len).1
     }
 
     /// The support plane of `p`, through its exact grid corners (`c > 0`):
@@ -361,6 +354,20 @@ fn snap_clip(p: DVec4) -> GridPoint {
     GridPoint::snap(p.x / p.w, p.y / p.w, p.z / p.w)
 }
 
+/// The sides of the polygon whose corners start at `start` (`len` of them) in `listed`
+/// ([`ScreenScene::listed_sides`]): the listed ones, or its face's edges in order where none
+/// are listed; and where its entries start in `listed` (`listed.len()` or past them when none).
+fn sides_of(listed: &[(u32, Side)], start: u32, len: u32) -> (usize, Sides) {
+    let at = listed.partition_point(|&(corner, _)| corner < start);
+    let sides = match listed.get(at) {
+        Some(&(corner, _)) if corner == start => (listed[at..at + len as usize].iter())
+            .map(|&(_, side)| side)
+            .collect(),
+        _ => (0..len).map(Side::Edge).collect(),
+    };
+    (at, sides)
+}
+
 /// Replaces `poly`, the last polygon of `corner_points` and `listed_sides`, by triangles of its
 /// snapped corners, each with the support plane through its own three corners. The triangles
 /// keep the polygon's orientation (`area`); a triangle side that is not a side of the polygon
@@ -375,12 +382,8 @@ fn split_into_triangles(
 ) {
     let start = poly.start as usize;
     let ring: Vec<u32> = corner_points.drain(start..).collect();
-    let listed = listed_sides.partition_point(|&(corner, _)| (corner as usize) < start);
-    let ring_sides: Vec<Side> = if listed < listed_sides.len() {
-        listed_sides.drain(listed..).map(|(_, side)| side).collect()
-    } else {
-        (0..ring.len() as u32).map(Side::Edge).collect()
-    };
+    let (listed, ring_sides) = sides_of(listed_sides, poly.start, poly.len);
+    listed_sides.truncate(listed);
     let n = ring.len();
     let point = |k: usize| grid_points[ring[k] as usize];
     // Triangulate counter-clockwise (reversing a clockwise ring), then map back.

@@ -95,8 +95,8 @@ pub struct Piece {
 
 /// Vertex k of a piece and its line k (from vertex k to vertex k + 1), with what the exact
 /// tests cache about the vertex: 72 bytes (80 with a 12-byte [`Boundary`] and an f64 error
-/// bound: the 1M sphere's `--method bsp` peaked 12 MB higher). The line's f64 coefficients are not cached
-/// ([`Line::approx`] computes them when a test needs them): a 48-byte cache per vertex made
+/// bound: the 1M sphere's `--method bsp` peaked 12 MB higher). The line's f64 coefficients are
+/// not cached ([`Line::approx`] computes them when a test needs them): a 48-byte cache per vertex made
 /// every piece 568 bytes instead of 376, and pieces are moved by value at every split. Without
 /// it, `render bunny` (one thread) runs 2 % more instructions, no more time (medians of
 /// interleaved runs), and the 1M sphere's `--method bsp` peaks at 0.83-0.86 GB instead of
@@ -116,7 +116,7 @@ struct Vertex {
     /// Where line k comes from.
     boundary: PackedBoundary,
     /// Is the vertex a grid point (an input corner, or two face edges crossing exactly at a
-    /// mesh vertex)? Exact fast paths use its grid coordinates. They are `point`'s x and y,
+    /// mesh vertex)? Exact fast paths use its grid coordinates. They are `xy`,
     /// which hold them exactly (grid coordinates are integers of at most 2^53, every one an
     /// f64), with e = 0: a flag instead of an `Option<[i64; 2]>` keeps the record at 72 bytes
     /// instead of 96.
