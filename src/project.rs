@@ -27,6 +27,8 @@ use crate::exact::{GUARD, GridPoint, Plane, twice_signed_area};
 use crate::scene::analysis::SceneAnalysis;
 use crate::scene::{FaceId, Scene};
 use glam::DVec4;
+use rayon::prelude::*;
+use smallvec::SmallVec;
 
 /// When back faces are removed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
@@ -418,6 +420,161 @@ fn split_into_triangles(
     }
 }
 
+/// Faces per chunk of [`project`]'s parallel pass.
+const FACE_CHUNK: usize = 1 << 14;
+
+/// What [`project`] makes of one face on its own (16 bytes: the common kept face, unclipped
+/// and planar with every corner, is read from the scene again when its corners enter the
+/// tables).
+enum Made {
+    /// Not kept: outside the frustum, flat after snapping, or a culled back face.
+    Dropped {
+        orientation: Orientation,
+        clipped: bool,
+    },
+    /// Kept as it is: its corners are its face's, in order, each the snap of its vertex.
+    Whole {
+        orientation: Orientation,
+        front: bool,
+    },
+    /// Kept, clipped or with corners gone (snapped onto the one before) or not planar.
+    Ring {
+        orientation: Orientation,
+        clipped: bool,
+        ring: Box<KeptRing>,
+    },
+}
+
+/// A kept face's snapped ring: per corner the grid point, the scene vertex it is the snap of
+/// (an unclipped corner) and the side leaving it.
+struct KeptRing {
+    points: SmallVec<[GridPoint; 4]>,
+    ring: SmallVec<[(Option<u32>, Side); 4]>,
+    front: bool,
+    /// Its corners lie in one plane (else it is split into triangles).
+    planar: bool,
+}
+
+/// What [`project`] reads to make a face's ring.
+struct FaceContext<'a, C: Fn(usize) -> bool> {
+    scene: &'a Scene,
+    analysis: &'a SceneAnalysis,
+    /// Per scene vertex: its clip-space point, outcode, and snapped grid point (when its
+    /// outcode has no clip bit).
+    clip: &'a [DVec4],
+    codes: &'a [u16],
+    snapped: &'a [GridPoint],
+    may_cull: &'a C,
+}
+
+impl<C: Fn(usize) -> bool> FaceContext<'_, C> {
+    /// Face `fi` clipped, snapped and tested for culling.
+    fn made(&self, fi: usize) -> Made {
+        let (scene, codes) = (self.scene, self.codes);
+        let face = &scene.faces[fi];
+        let corners = scene.face_corners(face);
+        let mut and = u16::MAX;
+        let mut or = 0u16;
+        for &c in corners {
+            let code = codes[c as usize];
+            and &= code;
+            or |= code;
+        }
+        if and & FRUSTUM != 0 {
+            return Made::Dropped {
+                orientation: Orientation::Outside,
+                clipped: false,
+            };
+        }
+        let clipped = or & CLIP != 0;
+        let mut points: SmallVec<[GridPoint; 4]> = SmallVec::new();
+        let mut ring: SmallVec<[(Option<u32>, Side); 4]> = SmallVec::new();
+        // A corner at the (x, y) of the one before it ends a side of no length: the side that
+        // starts there is the one that goes on.
+        let mut push = |g: GridPoint, vertex: Option<u32>, side: Side| {
+            if let Some(last) = points.last()
+                && last.x == g.x
+                && last.y == g.y
+            {
+                ring.last_mut().expect("parallel to the points").1 = side;
+                return;
+            }
+            points.push(g);
+            ring.push((vertex, side));
+        };
+        if !clipped {
+            for (k, &c) in corners.iter().enumerate() {
+                push(self.snapped[c as usize], Some(c), Side::Edge(k as u32));
+            }
+        } else {
+            let mut buf_a: Vec<(DVec4, Side)> = (corners.iter().enumerate())
+                .map(|(k, &c)| (self.clip[c as usize], Side::Edge(k as u32)))
+                .collect();
+            let mut buf_b = Vec::new();
+            for bit in [NEAR, FAR, G_LEFT, G_RIGHT, G_BOTTOM, G_TOP] {
+                if or & bit != 0 {
+                    clip_polygon(&buf_a, bit, &mut buf_b);
+                    std::mem::swap(&mut buf_a, &mut buf_b);
+                }
+            }
+            for &(p, side) in &buf_a {
+                push(snap_clip(p), None, side);
+            }
+        }
+        // Close the ring: the last corner may repeat the first (its side, of no length, goes).
+        while points.len() > 1 {
+            let (f, l) = (points[0], points[points.len() - 1]);
+            if f.x == l.x && f.y == l.y {
+                points.pop();
+                ring.pop();
+            } else {
+                break;
+            }
+        }
+        let area = if points.len() >= 3 {
+            twice_signed_area(&points)
+        } else {
+            std::cmp::Ordering::Equal
+        };
+        let orientation = match area {
+            std::cmp::Ordering::Greater => Orientation::Ccw,
+            std::cmp::Ordering::Less => Orientation::Cw,
+            std::cmp::Ordering::Equal => Orientation::Flat,
+        };
+        let dropped = Made::Dropped {
+            orientation,
+            clipped,
+        };
+        if area.is_eq() {
+            return dropped;
+        }
+        let front = area.is_gt() != self.analysis.meshes[face.mesh as usize].wound_inwards();
+        let two_sided = scene.materials[face.material as usize].two_sided;
+        if !front && !two_sided && (self.may_cull)(face.mesh as usize) {
+            return dropped;
+        }
+        // Three corners always are; more must lie in the plane of three of them (which exists:
+        // a projection with area has three corners not on one line).
+        let planar = points.len() == 3 || {
+            let plane = Plane::of_polygon(&points).expect("a polygon with area has a plane");
+            points.iter().all(|c| plane.sign_at(*c).is_eq())
+        };
+        if !clipped && planar && points.len() == corners.len() {
+            return Made::Whole { orientation, front };
+        }
+        Made::Ring {
+            orientation,
+            clipped,
+            ring: Box::new(KeptRing {
+                points,
+                ring,
+                front,
+                planar,
+            }),
+        }
+    }
+}
+
 /// Projects, clips, snaps and culls every face of `scene`.
 pub fn project(
     scene: &Scene,
@@ -426,8 +583,12 @@ pub fn project(
     cull: CullMode,
 ) -> ScreenScene {
     let m = camera.view_projection();
-    let clip: Vec<DVec4> = scene.positions.iter().map(|p| m * p.extend(1.0)).collect();
-    let codes: Vec<u16> = clip.iter().map(|&p| outcode(p)).collect();
+    let clip: Vec<DVec4> = scene
+        .positions
+        .par_iter()
+        .map(|p| m * p.extend(1.0))
+        .collect();
+    let codes: Vec<u16> = clip.par_iter().map(|&p| outcode(p)).collect();
 
     let mut stats = ProjectStats {
         faces: scene.faces.len(),
@@ -460,6 +621,26 @@ pub fn project(
         .filter(|&k| mesh_may_cull(k))
         .count();
 
+    // Each face on its own first, in parallel, chunk by chunk (a chunk's results are small and
+    // gone before the next); then in face order, one thread, each kept face's corners enter the
+    // tables, so the tables are the same on any number of threads.
+    let snapped: Vec<GridPoint> = (clip.par_iter().zip(&codes))
+        .map(|(&p, &code)| {
+            if code & CLIP == 0 {
+                snap_clip(p)
+            } else {
+                GridPoint { x: 0, y: 0, z: 0 }
+            }
+        })
+        .collect();
+    let faces = FaceContext {
+        scene,
+        analysis,
+        clip: &clip,
+        codes: &codes,
+        snapped: &snapped,
+        may_cull: &mesh_may_cull,
+    };
     let mut polys = Vec::with_capacity(scene.faces.len());
     // Each scene vertex's index in `grid_points`, once a kept face has it as an unclipped
     // corner.
@@ -467,158 +648,96 @@ pub fn project(
     let mut grid_points: Vec<GridPoint> = Vec::with_capacity(scene.positions.len());
     let mut corner_points: Vec<u32> = Vec::with_capacity(scene.corners.len());
     let mut listed_sides: Vec<(u32, Side)> = Vec::new();
-    let mut buf_a: Vec<(DVec4, Side)> = Vec::new();
-    let mut buf_b: Vec<(DVec4, Side)> = Vec::new();
-    // One face's corners until it is kept: the grid points, and per corner the scene vertex it
-    // is the snap of (an unclipped corner) and the side leaving it.
-    let mut ring_points: Vec<GridPoint> = Vec::new();
-    let mut ring: Vec<(Option<u32>, Side)> = Vec::new();
-    let mut orientation = Vec::with_capacity(scene.faces.len());
-
-    for (fi, face) in scene.faces.iter().enumerate() {
-        let corners = scene.face_corners(face);
-        let mut and = u16::MAX;
-        let mut or = 0u16;
-        for &c in corners {
-            let code = codes[c as usize];
-            and &= code;
-            or |= code;
-        }
-        if and & FRUSTUM != 0 {
-            stats.frustum_culled += 1;
-            orientation.push(Orientation::Outside);
-            continue;
-        }
-        ring_points.clear();
-        ring.clear();
-        // A corner at the (x, y) of the one before it ends a side of no length: the side that
-        // starts there is the one that goes on.
-        let push = |g: GridPoint,
-                    vertex: Option<u32>,
-                    side: Side,
-                    ring_points: &mut Vec<GridPoint>,
-                    ring: &mut Vec<(Option<u32>, Side)>| {
-            if let Some(last) = ring_points.last()
-                && last.x == g.x
-                && last.y == g.y
-            {
-                ring.last_mut().expect("parallel to the points").1 = side;
-                return;
-            }
-            ring_points.push(g);
-            ring.push((vertex, side));
-        };
-        if or & CLIP == 0 {
-            for (k, &c) in corners.iter().enumerate() {
-                let g = match point_of_vertex[c as usize] {
-                    u32::MAX => snap_clip(clip[c as usize]),
-                    known => grid_points[known as usize],
+    let mut orientation_of = Vec::with_capacity(scene.faces.len());
+    let mut made: Vec<Made> = Vec::with_capacity(FACE_CHUNK);
+    for first in (0..scene.faces.len()).step_by(FACE_CHUNK) {
+        let last = (first + FACE_CHUNK).min(scene.faces.len());
+        (first..last)
+            .into_par_iter()
+            .map(|fi| faces.made(fi))
+            .collect_into_vec(&mut made);
+        for (fi, m) in (first..).zip(made.drain(..)) {
+            let face = &scene.faces[fi];
+            let start = corner_points.len();
+            // Kept: its corners enter the tables, a vertex's point once for all its faces.
+            let mut enter = |g: GridPoint, vertex: Option<u32>| {
+                let known = vertex.map_or(u32::MAX, |v| point_of_vertex[v as usize]);
+                let index = if known != u32::MAX {
+                    known
+                } else {
+                    grid_points.push(g);
+                    let index = (grid_points.len() - 1) as u32;
+                    if let Some(v) = vertex {
+                        point_of_vertex[v as usize] = index;
+                    }
+                    index
                 };
-                push(
-                    g,
-                    Some(c),
-                    Side::Edge(k as u32),
-                    &mut ring_points,
-                    &mut ring,
+                corner_points.push(index);
+            };
+            let (orientation, front, planar) = match m {
+                Made::Dropped {
+                    orientation,
+                    clipped,
+                } => {
+                    orientation_of.push(orientation);
+                    stats.clipped += clipped as usize;
+                    match orientation {
+                        Orientation::Outside => stats.frustum_culled += 1,
+                        Orientation::Flat => stats.degenerate_after_snap += 1,
+                        Orientation::Ccw | Orientation::Cw => stats.backface_culled += 1,
+                    }
+                    continue;
+                }
+                Made::Whole { orientation, front } => {
+                    for &c in scene.face_corners(face) {
+                        enter(snapped[c as usize], Some(c));
+                    }
+                    (orientation, front, true)
+                }
+                Made::Ring {
+                    orientation,
+                    clipped,
+                    ring,
+                } => {
+                    stats.clipped += clipped as usize;
+                    let edges_in_order = (ring.ring.iter().enumerate())
+                        .all(|(k, &(_, side))| side == Side::Edge(k as u32));
+                    for (k, (&g, &(vertex, side))) in ring.points.iter().zip(&ring.ring).enumerate()
+                    {
+                        if !edges_in_order {
+                            listed_sides.push(((start + k) as u32, side));
+                        }
+                        enter(g, vertex);
+                    }
+                    (orientation, ring.front, ring.planar)
+                }
+            };
+            orientation_of.push(orientation);
+            let poly = ScreenPoly {
+                face: fi as u32,
+                id: face.id,
+                mesh: face.mesh,
+                start: start as u32,
+                len: (corner_points.len() - start) as u32,
+                front,
+            };
+            if planar {
+                polys.push(poly);
+            } else {
+                stats.split_nonplanar += 1;
+                let area = match orientation {
+                    Orientation::Ccw => std::cmp::Ordering::Greater,
+                    _ => std::cmp::Ordering::Less,
+                };
+                split_into_triangles(
+                    poly,
+                    area,
+                    &grid_points,
+                    &mut corner_points,
+                    &mut listed_sides,
+                    &mut polys,
                 );
             }
-        } else {
-            stats.clipped += 1;
-            buf_a.clear();
-            buf_a.extend(
-                corners
-                    .iter()
-                    .enumerate()
-                    .map(|(k, &c)| (clip[c as usize], Side::Edge(k as u32))),
-            );
-            for bit in [NEAR, FAR, G_LEFT, G_RIGHT, G_BOTTOM, G_TOP] {
-                if or & bit != 0 {
-                    clip_polygon(&buf_a, bit, &mut buf_b);
-                    std::mem::swap(&mut buf_a, &mut buf_b);
-                }
-            }
-            for &(p, side) in &buf_a {
-                push(snap_clip(p), None, side, &mut ring_points, &mut ring);
-            }
-        }
-        // Close the ring: the last corner may repeat the first (its side, of no length, goes).
-        while ring_points.len() > 1 {
-            let (f, l) = (ring_points[0], ring_points[ring_points.len() - 1]);
-            if f.x == l.x && f.y == l.y {
-                ring_points.pop();
-                ring.pop();
-            } else {
-                break;
-            }
-        }
-        let area = if ring_points.len() >= 3 {
-            twice_signed_area(&ring_points)
-        } else {
-            std::cmp::Ordering::Equal
-        };
-        orientation.push(match area {
-            std::cmp::Ordering::Greater => Orientation::Ccw,
-            std::cmp::Ordering::Less => Orientation::Cw,
-            std::cmp::Ordering::Equal => Orientation::Flat,
-        });
-        let plane = if area.is_ne() {
-            Plane::of_polygon(&ring_points)
-        } else {
-            None
-        };
-        let Some(plane) = plane else {
-            *orientation.last_mut().expect("pushed above") = Orientation::Flat;
-            stats.degenerate_after_snap += 1;
-            continue;
-        };
-        let front = area.is_gt() != analysis.meshes[face.mesh as usize].wound_inwards();
-        let two_sided = scene.materials[face.material as usize].two_sided;
-        if !front && !two_sided && mesh_may_cull(face.mesh as usize) {
-            stats.backface_culled += 1;
-            continue;
-        }
-        // Kept: its corners enter the tables, a vertex's point once for all its faces.
-        let start = corner_points.len();
-        let edges_in_order =
-            (ring.iter().enumerate()).all(|(k, &(_, side))| side == Side::Edge(k as u32));
-        for (&g, &(vertex, side)) in ring_points.iter().zip(&ring) {
-            let known = vertex.map_or(u32::MAX, |v| point_of_vertex[v as usize]);
-            let index = if known != u32::MAX {
-                known
-            } else {
-                grid_points.push(g);
-                let index = (grid_points.len() - 1) as u32;
-                if let Some(v) = vertex {
-                    point_of_vertex[v as usize] = index;
-                }
-                index
-            };
-            if !edges_in_order {
-                listed_sides.push((corner_points.len() as u32, side));
-            }
-            corner_points.push(index);
-        }
-        let poly = ScreenPoly {
-            face: fi as u32,
-            id: face.id,
-            mesh: face.mesh,
-            start: start as u32,
-            len: ring.len() as u32,
-            front,
-        };
-        let planar = poly.len == 3 || ring_points.iter().all(|c| plane.sign_at(*c).is_eq());
-        if planar {
-            polys.push(poly);
-        } else {
-            stats.split_nonplanar += 1;
-            split_into_triangles(
-                poly,
-                area,
-                &grid_points,
-                &mut corner_points,
-                &mut listed_sides,
-                &mut polys,
-            );
         }
     }
     stats.visible_polys = polys.len();
@@ -633,7 +752,7 @@ pub fn project(
         grid_points,
         corner_points,
         listed_sides,
-        orientation,
+        orientation: orientation_of,
         width: camera.width,
         height: camera.height,
         stats,
