@@ -68,10 +68,9 @@ pub fn screen_paints(
     camera: &Camera,
     fill: Fill,
 ) -> Vec<Paint> {
+    use rayon::prelude::*;
     let lighting = Lighting::of_scene(scene, camera);
-    screen
-        .polys
-        .iter()
+    (screen.polys.par_iter())
         .map(|p| paint_with(&lighting, scene, p.face as usize, camera, fill))
         .collect()
 }

@@ -8,6 +8,11 @@
 
 use super::{Face, Scene};
 use glam::DVec3;
+use rayon::prelude::*;
+
+/// Faces per chunk of the signed volume's partial sums: fixed, so the sum is the same whatever
+/// the number of threads.
+const VOLUME_CHUNK: usize = 1 << 14;
 
 /// Closedness and orientation of one mesh.
 #[derive(Clone, Debug, PartialEq)]
@@ -72,19 +77,17 @@ pub fn analyse(scene: &Scene) -> SceneAnalysis {
         .iter()
         .map(|m| analyse_mesh(scene, &scene.faces[m.faces.clone()], &canon))
         .collect();
+    // Min and max are exact, so the split across threads changes nothing.
     let mesh_bounds: Vec<(DVec3, DVec3)> = scene
         .meshes
         .iter()
         .map(|m| {
-            let mut lo = DVec3::splat(f64::INFINITY);
-            let mut hi = DVec3::splat(f64::NEG_INFINITY);
-            for f in &scene.faces[m.faces.clone()] {
-                for p in scene.face_positions(f) {
-                    lo = lo.min(p);
-                    hi = hi.max(p);
-                }
-            }
-            (lo, hi)
+            let empty = || (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+            (scene.faces[m.faces.clone()].par_iter())
+                .fold(empty, |(lo, hi), f| {
+                    (scene.face_positions(f)).fold((lo, hi), |(lo, hi), p| (lo.min(p), hi.max(p)))
+                })
+                .reduce(empty, |(la, ha), (lb, hb)| (la.min(lb), ha.max(hb)))
         })
         .collect();
     let mut overlapping_mesh_pairs = 0;
@@ -120,7 +123,8 @@ fn weld(positions: &[DVec3]) -> Vec<u32> {
         .enumerate()
         .map(|(i, p)| ((bits(p.x), bits(p.y), bits(p.z)), i as u32))
         .collect();
-    keyed.sort_unstable();
+    // Keys are unique (the index breaks ties): one sorted order, on any number of threads.
+    keyed.par_sort_unstable();
     let mut canon = vec![0u32; positions.len()];
     let mut rep = 0u32;
     for k in 0..keyed.len() {
@@ -146,17 +150,18 @@ fn analyse_mesh(scene: &Scene, faces: &[Face], canon: &[u32]) -> MeshAnalysis {
             volume_sign_certain: false,
         };
     }
-    let mut edges: Vec<u64> = Vec::with_capacity(faces.iter().map(|f| f.len as usize).sum());
-    for f in faces {
-        let c = scene.face_corners(f);
-        for k in 0..c.len() {
-            let u = canon[c[k] as usize];
-            let v = canon[c[(k + 1) % c.len()] as usize];
-            let (lo, hi) = if u < v { (u, v) } else { (v, u) };
-            edges.push((lo as u64) << 33 | (hi as u64) << 1 | (u < v) as u64);
-        }
-    }
-    edges.sort_unstable();
+    let mut edges: Vec<u64> = (faces.par_iter())
+        .flat_map_iter(|f| {
+            let c = scene.face_corners(f);
+            (0..c.len()).map(move |k| {
+                let u = canon[c[k] as usize];
+                let v = canon[c[(k + 1) % c.len()] as usize];
+                let (lo, hi) = if u < v { (u, v) } else { (v, u) };
+                (lo as u64) << 33 | (hi as u64) << 1 | (u < v) as u64
+            })
+        })
+        .collect();
+    edges.par_sort_unstable();
     let (mut boundary, mut nonmanifold, mut inconsistent) = (0, 0, 0);
     for group in edges.chunk_by(|a, b| a >> 1 == b >> 1) {
         match group {
@@ -174,20 +179,29 @@ fn analyse_mesh(scene: &Scene, faces: &[Face], canon: &[u32]) -> MeshAnalysis {
         .first()
         .map(|f| scene.positions[scene.face_corners(f)[0] as usize])
         .unwrap_or(DVec3::ZERO);
-    let mut volume = 0.0;
-    let mut magnitude = 0.0;
-    let mut terms = 0usize;
-    for f in faces {
-        let c = scene.face_corners(f);
-        let p = |k: usize| scene.positions[c[k] as usize] - origin;
-        for k in 1..c.len() - 1 {
-            let (a, b, cc) = (p(0), p(k), p(k + 1));
-            let t = a.dot(b.cross(cc));
-            let m = a.abs().dot(abs_cross_bound(b, cc));
-            volume += t;
-            magnitude += m;
-            terms += 1;
-        }
+    // Summed chunk by chunk, then the chunks' sums in order: the bound below holds for any
+    // order of summation, and a fixed one gives the same volume on any number of threads.
+    let partial: Vec<(f64, f64, usize)> = (faces.par_chunks(VOLUME_CHUNK))
+        .map(|chunk| {
+            let (mut volume, mut magnitude, mut terms) = (0.0, 0.0, 0usize);
+            for f in chunk {
+                let c = scene.face_corners(f);
+                let p = |k: usize| scene.positions[c[k] as usize] - origin;
+                for k in 1..c.len() - 1 {
+                    let (a, b, cc) = (p(0), p(k), p(k + 1));
+                    volume += a.dot(b.cross(cc));
+                    magnitude += a.abs().dot(abs_cross_bound(b, cc));
+                    terms += 1;
+                }
+            }
+            (volume, magnitude, terms)
+        })
+        .collect();
+    let (mut volume, mut magnitude, mut terms) = (0.0, 0.0, 0usize);
+    for (v, m, t) in partial {
+        volume += v;
+        magnitude += m;
+        terms += t;
     }
     let bound = (terms as f64 + 8.0) * crate::exact::U * 2.0 * magnitude;
     MeshAnalysis {
