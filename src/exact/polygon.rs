@@ -922,11 +922,17 @@ pub fn corners_separated(pc: &[[i64; 2]], qc: &[[i64; 2]]) -> bool {
             .map(|i| cross_xy(a[0], a[i], a[i + 1]).signum())
             .find(|&t| t != 0)
             .unwrap_or(0);
-        turn != 0
-            && (0..a.len()).any(|i| {
-                let (c, d) = (a[i], a[(i + 1) % a.len()]);
-                b.iter().all(|&v| cross_xy(c, d, v) * turn <= 0)
-            })
+        if turn == 0 {
+            return false;
+        }
+        // Edges as (corner before, corner): no index arithmetic in the loop (a `%` by a
+        // length only known at run time is a division, dearer than the products).
+        let mut c = a[a.len() - 1];
+        a.iter().any(|&d| {
+            let edge = (c, d);
+            c = d;
+            b.iter().all(|&v| cross_xy(edge.0, edge.1, v) * turn <= 0)
+        })
     }
     outside(qc, pc) || outside(pc, qc)
 }
