@@ -236,7 +236,14 @@ pub fn line_tracks(
     let unculled = if options.cull == CullMode::Off {
         screen
     } else {
-        all_faces = project(scene, &prepared.analysis, camera, CullMode::Off);
+        // This runs beside the visible set, which has the rayon pool: `project`'s parallel
+        // chunks would each wait there behind a strip. A pool of one thread of its own runs
+        // it through, as on one core.
+        let unculled = || project(scene, &prepared.analysis, camera, CullMode::Off);
+        all_faces = match rayon::ThreadPoolBuilder::new().num_threads(1).build() {
+            Ok(pool) => pool.install(unculled),
+            Err(_) => unculled(),
+        };
         &all_faces
     };
     let flats = flat_faces(scene, screen, &m);
