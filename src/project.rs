@@ -785,6 +785,38 @@ mod tests {
     use crate::scene::primitives::{exported_sphere_scene, sphere_scene};
     use std::collections::BTreeSet;
 
+    /// Projection (and the analysis before it) runs on all cores in chunks; the tables it makes
+    /// are the same on one thread and on four, over more than two chunks of faces, with and
+    /// without culling.
+    #[test]
+    fn a_scene_projects_the_same_on_one_thread_and_on_four() {
+        for scene in [sphere_scene(40_000), exported_sphere_scene(40_000)] {
+            assert!(scene.faces.len() > 2 * FACE_CHUNK);
+            let bounds = scene.bounds().expect("a sphere has bounds");
+            let camera = Camera::fit(NamedView::Front, bounds, false, 40.0, 64, 64);
+            let run = |threads: usize| {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .expect("a pool");
+                pool.install(|| {
+                    let analysis = analyse(&scene);
+                    let screen = project(&scene, &analysis, &camera, CullMode::Auto);
+                    (analysis, screen)
+                })
+            };
+            let ((a1, s1), (a4, s4)) = (run(1), run(4));
+            assert_eq!(a1, a4);
+            assert_eq!(s1.polys, s4.polys);
+            assert_eq!(s1.grid_points, s4.grid_points);
+            assert_eq!(s1.corner_points, s4.corner_points);
+            assert_eq!(s1.listed_sides, s4.listed_sides);
+            assert_eq!(s1.orientation, s4.orientation);
+            assert_eq!(s1.stats, s4.stats);
+            assert!(!s1.polys.is_empty());
+        }
+    }
+
     /// The parallel pass's per-face result stays 16 bytes (a chunk's worth is made at once):
     /// only a clipped, shortened or non-planar face boxes its ring.
     #[test]
