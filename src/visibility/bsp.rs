@@ -46,6 +46,9 @@ pub struct BspStats {
     pub nodes: usize,
     /// Depth of the 3D BSP.
     pub depth: usize,
+    /// Pairs of pieces with overlapping screen boxes tested exactly while planning nodes (the
+    /// front layer's and the separation checks' tests): the tree's main cost.
+    pub pair_tests: usize,
     /// Visible pieces after the coverage pass.
     pub visible_pieces: usize,
 }
@@ -57,6 +60,7 @@ impl Counters for BspStats {
         self.fragments += o.fragments;
         self.nodes += o.nodes;
         self.depth = self.depth.max(o.depth);
+        self.pair_tests += o.pair_tests;
         self.visible_pieces += o.visible_pieces;
     }
 }
@@ -187,19 +191,29 @@ fn candidates<'a>(pieces: &'a [Piece], boxes: &[[f64; 4]]) -> (Vec<Splitter>, Ve
 
 /// Do the pieces pairwise have disjoint interiors on screen? Then no piece can hide another and
 /// their order does not matter: the node needs no splitter. The sweep of [`box_pairs`] finds the
-/// candidate pairs; the exact separation test decides each. Stops at the first overlap.
-fn pairwise_separated(list: &[Piece], boxes: &[[f64; 4]]) -> bool {
+/// candidate pairs; the exact separation test decides each (counted in `tests`). Stops at the
+/// first overlap.
+fn pairwise_separated(list: &[Piece], boxes: &[[f64; 4]], tests: &mut usize) -> bool {
     box_pairs(boxes, &vec![true; list.len()], |i, j| {
+        *tests += 1;
         separated(&list[i], &list[j])
     })
 }
 
-/// A crowd: past this many pairs of overlapping screen boxes per piece, a node looks for its
-/// [`front_layer`] only when no splitter divides it ([`Tally::divides`]): the layer's exact
-/// tests cost a pair each. A tessellated surface's triangles meet up to about 30 neighbours'
-/// boxes (bunny, dragon, counter under `--method bsp`); a sphere's polar slivers seen edge-on
-/// meet 60 (100k triangles) to 170 (1M), a stack of parallel squares all but one of the others.
+/// A crowd: past this many pairs per piece that may hide one another (overlapping on screen,
+/// one not provably behind the other), a node looks for its [`front_layer`] only when no
+/// splitter divides it ([`Tally::divides`]). A stack of parallel squares has such a pair for
+/// all but one of the others and gives up early; a surface's pieces have few, however many
+/// boxes they meet: a sphere's polar slivers seen edge-on meet 60 (100k triangles) to 170
+/// (1M) neighbours' boxes, but the corners they share settle almost every pair. Counting box
+/// pairs instead gave up on the 1M sphere's strips after 7.6M pair tests (a quarter of all)
+/// that were then thrown away, and split them, cutting 3k more pieces.
 const LAYER_PAIRS_PER_PIECE: usize = 32;
+
+/// The layer's pair tests, at most this many times [`LAYER_PAIRS_PER_PIECE`] per piece
+/// whatever they find: pieces whose boxes all overlap but which are pairwise apart (slivers
+/// side by side on a diagonal) must not cost a test per pair before a splitter is tried.
+const LAYER_TESTS_PER_PAIR: usize = 16;
 
 /// A front layer with fewer than one piece in this many is thin: the node takes a splitter
 /// instead (shingles overlapping in a chain would otherwise be peeled one per level).
@@ -295,13 +309,15 @@ fn sweeps_in_x(boxes: &[[f64; 4]]) -> bool {
 ///
 /// Decides the open pieces of `blockers` (see [`OPEN`]): each stays open (in the layer) or
 /// gets the index of a piece that may hide part of it. Gives up (`false`, `blockers` partly
-/// decided) past `most_pairs` overlapping boxes with an open piece.
+/// decided) past `most_pairs` pairs that may hide one another, or [`LAYER_TESTS_PER_PAIR`]
+/// times as many pairs of overlapping boxes with an open piece. Adds its pair tests to `tests`.
 fn front_layer(
     list: &[Piece],
     boxes: &[[f64; 4]],
     depths: &[[f64; 2]],
     blockers: &mut [u32],
     most_pairs: usize,
+    tests: &mut usize,
 ) -> bool {
     let open: Vec<bool> = blockers.iter().map(|&b| b == OPEN).collect();
     // Each piece's grid corners, found once (a piece meets a dozen boxes) and kept in one flat
@@ -313,10 +329,11 @@ fn front_layer(
         start.push(corners.len());
     }
     let corners_of = |k: usize| Some(&corners[start[k]..start[k + 1]]).filter(|c| !c.is_empty());
-    let mut pairs = 0;
-    box_pairs(boxes, &open, |i, j| {
-        pairs += 1;
-        if pairs > most_pairs {
+    let (mut pairs, mut pair_tests) = (0, 0);
+    let most_tests = most_pairs.saturating_mul(LAYER_TESTS_PER_PAIR);
+    let done = box_pairs(boxes, &open, |i, j| {
+        pair_tests += 1;
+        if pair_tests > most_tests {
             return false;
         }
         // Uncut neighbours on a surface share corners and never overlap: their corners settle
@@ -338,9 +355,15 @@ fn front_layer(
             if fails_j {
                 blockers[j] = i as u32;
             }
+            pairs += 1;
+            if pairs > most_pairs {
+                return false;
+            }
         }
         true
-    })
+    });
+    *tests += pair_tests;
+    done
 }
 
 /// What a node does with its pieces.
@@ -356,8 +379,14 @@ enum Plan {
 
 /// The node's plan: the front layer, unless the pieces are a crowd that a sampled splitter
 /// divides; a splitter when no piece, or only a thin layer, may go first. `blockers`: see
-/// [`OPEN`].
-fn plan(screen: &ScreenScene, list: &[Piece], boxes: &[[f64; 4]], mut blockers: Vec<u32>) -> Plan {
+/// [`OPEN`]. Adds its pair tests to `tests`.
+fn plan(
+    screen: &ScreenScene,
+    list: &[Piece],
+    boxes: &[[f64; 4]],
+    mut blockers: Vec<u32>,
+    tests: &mut usize,
+) -> Plan {
     if list.len() == 1 {
         return Plan::Bag;
     }
@@ -365,9 +394,9 @@ fn plan(screen: &ScreenScene, list: &[Piece], boxes: &[[f64; 4]], mut blockers: 
     let mut best = None;
     let given = blockers.clone();
     let most_pairs = LAYER_PAIRS_PER_PIECE * list.len();
-    if !front_layer(list, boxes, &depths, &mut blockers, most_pairs) {
+    if !front_layer(list, boxes, &depths, &mut blockers, most_pairs, tests) {
         // A crowd: split it if a splitter divides it, else find its layer whatever the cost.
-        if pairwise_separated(list, boxes) {
+        if pairwise_separated(list, boxes, tests) {
             return Plan::Bag;
         }
         let (splitter, tally) = best_splitter(list, boxes);
@@ -376,7 +405,7 @@ fn plan(screen: &ScreenScene, list: &[Piece], boxes: &[[f64; 4]], mut blockers: 
         }
         best = Some(splitter);
         blockers = given;
-        front_layer(list, boxes, &depths, &mut blockers, usize::MAX);
+        front_layer(list, boxes, &depths, &mut blockers, usize::MAX, tests);
     }
     let layer = blockers.iter().filter(|&&b| b == OPEN).count();
     if layer == list.len() {
@@ -470,7 +499,7 @@ impl Bsp {
                 blockers = vec![OPEN; n];
             }
             let mut rest_blockers = Vec::new();
-            let plan = plan(screen, &list, &boxes, blockers);
+            let plan = plan(screen, &list, &boxes, blockers, &mut stats.pair_tests);
             let disjoint = !matches!(plan, Plan::Split(_));
             let (mut neg, mut on, mut pos) = match plan {
                 // Nothing here can hide anything else: keep the pieces together, in input order.
@@ -786,6 +815,37 @@ mod tests {
             assert_eq!(grouped, one_by_one.into_pieces());
         }
         assert!(groups > 20, "{groups} groups of two pieces or more");
+    }
+
+    /// A cone seen from its apex: 256 slivers whose screen boxes all meet at the apex, every
+    /// pair apart on screen by the corners they share, and the base behind them. The slivers
+    /// are the front layer, found in one pass testing each pair once: only the base may be
+    /// hidden, so it is no crowd. (Counting every box pair against the crowd budget gave up
+    /// a quarter of the way, then tested them all again.)
+    #[test]
+    fn slivers_whose_boxes_all_overlap_are_a_layer_not_a_crowd() {
+        let n = 256;
+        let rim: Vec<GridPoint> = (0..n)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / n as f64;
+                let r = 1_000_000.0;
+                point([
+                    (r * a.cos()).round() as i64,
+                    (r * a.sin()).round() as i64,
+                    3000,
+                ])
+            })
+            .collect();
+        let apex = point([0, 0, 1000]);
+        let mut faces: Vec<Vec<GridPoint>> = (0..n)
+            .map(|k| vec![apex, rim[k], rim[(k + 1) % n]])
+            .collect();
+        faces.push(rim.iter().rev().copied().collect());
+        let screen = screen_of_polygons(faces);
+        let bsp = Bsp::build(&screen);
+        assert_eq!((bsp.stats.pieces, bsp.stats.fragments), (n + 1, n + 1));
+        assert_eq!((bsp.stats.nodes, bsp.stats.depth), (2, 2));
+        assert_eq!(bsp.stats.pair_tests, (n + 1) * n / 2, "every pair once");
     }
 
     /// Parallel squares stacked in depth all overlap on screen: a crowd. A support plane in the

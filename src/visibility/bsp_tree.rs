@@ -67,6 +67,7 @@ impl Strategy for BspTree {
         put("fragments", st.fragments.into());
         put("bsp_nodes", st.nodes.into());
         put("bsp_depth", st.depth.into());
+        put("bsp_pair_tests", st.pair_tests.into());
         if let Some(t) = translucent_bsp {
             put("translucent_pieces", t.pieces.into());
             put("translucent_fragments", t.fragments.into());

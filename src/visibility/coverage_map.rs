@@ -51,6 +51,7 @@ impl Strategy for CoverageMap {
             put("fragments", bsp.fragments.into());
             put("bsp_nodes", bsp.nodes.into());
             put("bsp_depth", bsp.depth.into());
+            put("bsp_pair_tests", bsp.pair_tests.into());
             put("translucent_parts", layered.len().into());
             put("strips", strips.into());
             (coverage.into_pieces(), layered)
