@@ -207,13 +207,10 @@ fn pairwise_separated(list: &[Piece], boxes: &[[f64; 4]], tests: &mut usize) -> 
 /// boxes they meet: a sphere's polar slivers seen edge-on meet 60 (100k triangles) to 170
 /// (1M) neighbours' boxes, but the corners they share settle almost every pair. Counting box
 /// pairs instead gave up on the 1M sphere's strips after 7.6M pair tests (a quarter of all)
-/// that were then thrown away, and split them, cutting 3k more pieces.
+/// that were then thrown away, and split them into 2.8k more pieces. Pieces whose boxes
+/// overlap but which all lie apart cost a test a pair either way: giving up, the node would
+/// sweep them all again to learn that they are pairwise separated.
 const LAYER_PAIRS_PER_PIECE: usize = 32;
-
-/// The layer's pair tests, at most this many times [`LAYER_PAIRS_PER_PIECE`] per piece
-/// whatever they find: pieces whose boxes all overlap but which are pairwise apart (slivers
-/// side by side on a diagonal) must not cost a test per pair before a splitter is tried.
-const LAYER_TESTS_PER_PAIR: usize = 16;
 
 /// A front layer with fewer than one piece in this many is thin: the node takes a splitter
 /// instead (shingles overlapping in a chain would otherwise be peeled one per level).
@@ -309,8 +306,7 @@ fn sweeps_in_x(boxes: &[[f64; 4]]) -> bool {
 ///
 /// Decides the open pieces of `blockers` (see [`OPEN`]): each stays open (in the layer) or
 /// gets the index of a piece that may hide part of it. Gives up (`false`, `blockers` partly
-/// decided) past `most_pairs` pairs that may hide one another, or [`LAYER_TESTS_PER_PAIR`]
-/// times as many pairs of overlapping boxes with an open piece. Adds its pair tests to `tests`.
+/// decided) past `most_pairs` pairs that may hide one another. Adds its pair tests to `tests`.
 fn front_layer(
     list: &[Piece],
     boxes: &[[f64; 4]],
@@ -330,12 +326,8 @@ fn front_layer(
     }
     let corners_of = |k: usize| Some(&corners[start[k]..start[k + 1]]).filter(|c| !c.is_empty());
     let (mut pairs, mut pair_tests) = (0, 0);
-    let most_tests = most_pairs.saturating_mul(LAYER_TESTS_PER_PAIR);
     let done = box_pairs(boxes, &open, |i, j| {
         pair_tests += 1;
-        if pair_tests > most_tests {
-            return false;
-        }
         // Uncut neighbours on a surface share corners and never overlap: their corners settle
         // it before any plane test.
         let apart = corners_of(i)
