@@ -23,7 +23,7 @@ use super::depth;
 use super::grid::{NO_BOX, joined};
 use super::initial_pieces;
 use super::strips::Counters;
-use super::visible_set::{Fragment, VisibleSet};
+use super::visible_set::{Fragment, Stats, VisibleSet};
 use crate::exact::Plane;
 use crate::exact::polygon::{
     Boundary, Piece, Split, corners_separated, separated, separated_by_lines,
@@ -51,6 +51,17 @@ pub struct BspStats {
     pub pair_tests: usize,
     /// Visible pieces after the coverage pass.
     pub visible_pieces: usize,
+}
+
+impl BspStats {
+    /// Writes the tree's own counters (fragments, nodes, depth, pair tests) into a strategy's
+    /// stats; the strategy counts its pieces itself (occluded ones never reach a tree).
+    pub(crate) fn put_tree(&self, stats: &mut Stats) {
+        stats.insert("fragments".into(), self.fragments.into());
+        stats.insert("bsp_nodes".into(), self.nodes.into());
+        stats.insert("bsp_depth".into(), self.depth.into());
+        stats.insert("bsp_pair_tests".into(), self.pair_tests.into());
+    }
 }
 
 impl Counters for BspStats {
@@ -325,9 +336,9 @@ fn front_layer(
         start.push(corners.len());
     }
     let corners_of = |k: usize| Some(&corners[start[k]..start[k + 1]]).filter(|c| !c.is_empty());
-    let (mut pairs, mut pair_tests) = (0, 0);
-    let done = box_pairs(boxes, &open, |i, j| {
-        pair_tests += 1;
+    let mut pairs = 0;
+    box_pairs(boxes, &open, |i, j| {
+        *tests += 1;
         // Uncut neighbours on a surface share corners and never overlap: their corners settle
         // it before any plane test.
         let apart = corners_of(i)
@@ -353,9 +364,7 @@ fn front_layer(
             }
         }
         true
-    });
-    *tests += pair_tests;
-    done
+    })
 }
 
 /// What a node does with its pieces.

@@ -64,15 +64,12 @@ impl Strategy for BspTree {
         );
         // Every opaque piece, as the coverage map counts: the occluded ones never reach a tree.
         put("pieces", (st.pieces + occluded).into());
-        put("fragments", st.fragments.into());
-        put("bsp_nodes", st.nodes.into());
-        put("bsp_depth", st.depth.into());
-        put("bsp_pair_tests", st.pair_tests.into());
         if let Some(t) = translucent_bsp {
             put("translucent_pieces", t.pieces.into());
             put("translucent_fragments", t.fragments.into());
             put("translucent_parts", layered.len().into());
         }
+        st.put_tree(&mut stats);
         VisibleSet::exact(screen, visible, layered, stats, fallbacks)
     }
 }

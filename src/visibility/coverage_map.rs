@@ -48,12 +48,9 @@ impl Strategy for CoverageMap {
             let mut coverage = Coverage::of_visible(screen, visible);
             let (layered, bsp) = translucent_layer(screen, &mut coverage, see_through, report);
             put("pieces", (cs.inserted + bsp.pieces).into());
-            put("fragments", bsp.fragments.into());
-            put("bsp_nodes", bsp.nodes.into());
-            put("bsp_depth", bsp.depth.into());
-            put("bsp_pair_tests", bsp.pair_tests.into());
             put("translucent_parts", layered.len().into());
             put("strips", strips.into());
+            bsp.put_tree(&mut stats);
             (coverage.into_pieces(), layered)
         } else {
             let all: Vec<u32> = (0..screen.polys.len() as u32).collect();
