@@ -144,7 +144,9 @@ impl<'a> Coverage<'a> {
         if self.occluded(&piece) {
             return;
         }
-        for part in self.clipped_by_near(piece, |_, part, front, out| subtract(part, front, out)) {
+        for part in self.clipped_by_near(piece, |_, part, front, out| {
+            subtract_overlapping(part, front, out)
+        }) {
             let b = bounds(&part);
             self.visible.add(part, b);
         }
@@ -161,9 +163,9 @@ impl<'a> Coverage<'a> {
             if self.occluded(&piece) {
                 continue;
             }
-            visible.extend(
-                self.clipped_by_near(piece, |_, part, front, out| subtract(part, front, out)),
-            );
+            visible.extend(self.clipped_by_near(piece, |_, part, front, out| {
+                subtract_overlapping(part, front, out)
+            }));
         }
         for part in visible {
             let b = bounds(&part);
@@ -176,10 +178,6 @@ impl<'a> Coverage<'a> {
     /// set.
     pub fn unhidden_parts(&mut self, piece: Piece, out: &mut Vec<Piece>) {
         out.extend(self.clipped_by_near(piece, |screen, part, front, out| {
-            if separated(&part, front) {
-                out.push(part);
-                return;
-            }
             let (nearer, farther) = split_by_depth(screen, part, front);
             out.extend(nearer);
             if let Some(farther) = farther {
@@ -189,8 +187,10 @@ impl<'a> Coverage<'a> {
     }
 
     /// What is left of `piece` after `clip(screen, part, front, kept)` has kept, of each part
-    /// so far, what one live piece whose bounds meet it leaves; the live pieces in turn, in
-    /// index order. The map is not changed.
+    /// so far that meets one live piece whose bounds meet it ([`separated`] said no), what
+    /// that live piece leaves; the live pieces in turn, in index order. Parts apart from a
+    /// live piece stay as they are, in place: most near pieces only touch, and moving every
+    /// part through each of them was a tenth of the 1M sphere's time. The map is not changed.
     fn clipped_by_near(
         &mut self,
         piece: Piece,
@@ -198,14 +198,22 @@ impl<'a> Coverage<'a> {
     ) -> Vec<Piece> {
         let near = self.visible.near(&bounds(&piece));
         let mut parts = vec![piece];
+        let mut next = Vec::new();
         for v in near {
             let front = self.visible.get(v).expect("live");
-            let mut next = Vec::with_capacity(parts.len());
-            for part in parts {
-                self.stats.overlap_tests += 1;
-                clip(self.screen, part, front, &mut next);
+            self.stats.overlap_tests += parts.len();
+            let Some(first) = parts.iter().position(|p| !separated(p, front)) else {
+                continue;
+            };
+            next.reserve(parts.len());
+            for (i, part) in parts.drain(..).enumerate() {
+                if i == first || (i > first && !separated(&part, front)) {
+                    clip(self.screen, part, front, &mut next);
+                } else {
+                    next.push(part);
+                }
             }
-            parts = next;
+            std::mem::swap(&mut parts, &mut next);
             if parts.is_empty() {
                 break;
             }
