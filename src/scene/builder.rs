@@ -93,6 +93,12 @@ impl SceneBuilder {
         (self.scene.positions.len() - 1) as u32
     }
 
+    /// Adds finite vertices in order, as [`Self::add_vertex`] one by one would.
+    pub fn add_vertices(&mut self, ps: &[DVec3]) {
+        debug_assert!(ps.iter().all(|p| p.is_finite()));
+        self.scene.positions.extend_from_slice(ps);
+    }
+
     /// How many vertices were added.
     pub fn vertex_count(&self) -> usize {
         self.scene.positions.len()

@@ -169,6 +169,66 @@ impl<R: Read> Input<R> {
         true
     }
 
+    /// Reads whole lines into `out` (cleared first), with their line ends: what the buffer holds
+    /// up to its last `\n` (about [`BUFFER`] bytes), at least one line, and more while the last
+    /// line read continues (`continues(line)`, the line without its `\r\n`). The first block
+    /// loses a leading BOM. False at the end of the data, and after a line longer than
+    /// [`MAX_LINE`] (an error for [`Input::finish`]). The lines of a block are the lines
+    /// [`Input::line`] would have returned one by one.
+    pub(crate) fn lines_block(&mut self, out: &mut Vec<u8>, continues: fn(&[u8]) -> bool) -> bool {
+        out.clear();
+        let first = self.pos() == 0;
+        loop {
+            if self.start == self.end && !self.refill() {
+                break;
+            }
+            let avail = &self.buf[self.start..self.end];
+            let taken = match avail.iter().rposition(|&b| b == b'\n') {
+                Some(i) => i + 1,
+                None => avail.len(),
+            };
+            let line_start = out.len();
+            out.extend_from_slice(&avail[..taken]);
+            self.consume(taken);
+            self.lines += out[line_start..].iter().filter(|&&b| b == b'\n').count() as u64;
+            let Some(body) = out.strip_suffix(b"\n") else {
+                // No line end yet: one long line, or the last line of the data.
+                let last = out.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+                if out.len() - last > MAX_LINE {
+                    let message = format!(
+                        "line {} is longer than {} MiB: not a mesh text file",
+                        self.lines + 1,
+                        MAX_LINE >> 20
+                    );
+                    self.fail(io::Error::new(io::ErrorKind::InvalidData, message));
+                    out.clear();
+                    return false;
+                }
+                continue;
+            };
+            let last = body.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+            let line = &body[last..];
+            if !continues(line.strip_suffix(b"\r").unwrap_or(line)) {
+                break;
+            }
+        }
+        if first && out.starts_with(BOM) {
+            out.drain(..BOM.len());
+        }
+        !out.is_empty()
+    }
+
+    /// Whether reading has failed.
+    pub(crate) fn failed(&self) -> bool {
+        self.error.is_some()
+    }
+
+    /// Drops a read error met after the data a loader stopped in (it read ahead): reading line
+    /// by line would never have reached it, so the loader's own error is the file's first.
+    pub(crate) fn forget_error(&mut self) {
+        self.error = None;
+    }
+
     /// The next `N` bytes, or `None` when fewer are left (then all of them are consumed).
     #[inline]
     pub(crate) fn take<const N: usize>(&mut self) -> Option<[u8; N]> {

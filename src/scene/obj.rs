@@ -28,14 +28,18 @@
 //! `usemtl`, `newmtl`) it is replaced, the same way on both sides of a material lookup, and
 //! `mtllib` file names are used as raw bytes on Unix.
 //!
-//! The file is read one line at a time (see [`super::input`]): memory holds the scene being built
-//! and the current line, not the file.
+//! The file is read a batch of blocks of whole lines at a time (see [`super::input`]), each
+//! block's numbers parsed on all cores and its statements then taken in file order: memory holds
+//! the scene being built and one batch (about 8 MiB) of text, not the file.
 
 use super::input::Input;
-use super::text::{Tokens, file_label, lossy, parse_coord, parse_int, show, strip_comment};
+use super::text::{
+    Tokens, file_label, lossy, next_line, parse_coord, parse_int, show, strip_comment,
+};
 use super::{CornerAttrs, Material, Scene, SceneBuilder, mtl};
 use crate::error::LoadError;
 use glam::DVec3;
+use rayon::prelude::*;
 use std::collections::HashMap;
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -49,42 +53,281 @@ pub(super) fn load<R: Read>(
     input.finish(result, name)
 }
 
-/// Reads the statements one (logical) line at a time from reused buffers.
+/// Blocks (about 1 MiB of whole lines each) read before they are parsed together on all cores.
+const BLOCKS_PER_BATCH: usize = 8;
+
+/// Reads the file a batch of blocks at a time, parses the blocks' lines on all cores
+/// ([`Block::parse`]: numbers and index syntax, which need nothing from the rest of the file),
+/// then hands their statements to the parser in file order, which resolves indices against what
+/// was defined before each line and stops at the first error. So the scene, the warnings and the
+/// first error are those of reading the lines one by one; memory holds one batch of text.
 fn parse<R: Read>(
     input: &mut Input<R>,
     name: &str,
     dir: Option<&Path>,
 ) -> Result<Scene, LoadError> {
     let mut parser = Parser::new(name, dir);
-    let mut line_no = 0usize;
-    let mut buf: Vec<u8> = Vec::new();
-    let mut cont: Vec<u8> = Vec::new();
-    let mut joined: Vec<u8> = Vec::new();
-    while input.line(&mut buf) {
-        line_no += 1;
-        let start_line = line_no;
-        let mut text = strip_comment(&buf);
-        if text.last() == Some(&b'\\') {
-            // Continuation: rare, so only this path copies.
-            joined.clear();
-            joined.extend_from_slice(&text[..text.len() - 1]);
-            joined.push(b' ');
-            while input.line(&mut cont) {
-                line_no += 1;
-                let t = strip_comment(&cont);
-                if let Some(head) = t.strip_suffix(b"\\") {
-                    joined.extend_from_slice(head);
-                    joined.push(b' ');
-                } else {
-                    joined.extend_from_slice(t);
+    let mut lines_before = 0usize;
+    let mut texts: Vec<Vec<u8>> = Vec::new();
+    let mut blocks: Vec<Block> = Vec::new();
+    loop {
+        let mut read = 0;
+        // The block in which reading failed (its last line may be cut short), if any.
+        let mut failed_in = None;
+        while read < BLOCKS_PER_BATCH {
+            if texts.len() == read {
+                texts.push(Vec::new());
+            }
+            if !input.lines_block(&mut texts[read], continues) {
+                break;
+            }
+            if input.failed() {
+                failed_in.get_or_insert(read);
+            }
+            read += 1;
+        }
+        if read == 0 {
+            break;
+        }
+        blocks.resize_with(read, Block::default);
+        texts[..read]
+            .par_iter()
+            .zip(blocks.par_iter_mut())
+            .for_each(|(text, block)| block.parse(text));
+        for (k, block) in blocks.iter().enumerate() {
+            if let Err(e) = parser.replay(block, lines_before) {
+                // Read line by line, the file would not have been read past this block: a
+                // read error met later (read ahead) is not its first problem.
+                if failed_in.is_none_or(|f| f > k) {
+                    input.forget_error();
+                }
+                return Err(e);
+            }
+            lines_before += block.lines;
+        }
+        if read < BLOCKS_PER_BATCH {
+            break;
+        }
+    }
+    parser.finish()
+}
+
+/// Whether a line continues on the next (a trailing backslash before any comment).
+fn continues(line: &[u8]) -> bool {
+    strip_comment(line).last() == Some(&b'\\')
+}
+
+/// A face corner as written: its vertex, texture and normal indices, not yet resolved against
+/// what is defined before its line (`None`: not given).
+#[derive(Clone, Copy)]
+struct RawCorner {
+    v: i64,
+    tex: Option<i64>,
+    nor: Option<i64>,
+}
+
+/// A statement (or a run of them) of a block, parsed without the rest of the file. Lines count
+/// from 1 at the block's first line.
+enum Statement {
+    /// `count` vertices on consecutive lines from `line`: the block's next `count` vertices.
+    Vertices { line: usize, count: usize },
+    /// A face of three or more corners given by positive vertex indices alone, the common
+    /// case: its corners are the block's next `len` `corners` (0-based); `max` is the largest
+    /// (1-based) index.
+    Face { line: usize, len: usize, max: u32 },
+    /// Any other face: its corners are the block's next `len` `raw` corners; `bad`: the syntax
+    /// error of the corner after them, which ends the face.
+    RawFace {
+        line: usize,
+        len: usize,
+        bad: Option<String>,
+    },
+    /// Any other statement: the block's `text[start..end]`.
+    Other {
+        line: usize,
+        start: usize,
+        end: usize,
+    },
+    /// A `v` line with a bad or missing coordinate.
+    BadVertex { line: usize, message: String },
+}
+
+/// The statements of one block of whole lines.
+#[derive(Default)]
+struct Block {
+    statements: Vec<Statement>,
+    vertices: Vec<DVec3>,
+    corners: Vec<u32>,
+    raw: Vec<RawCorner>,
+    /// The text of the `Other` statements (continued lines joined).
+    text: Vec<u8>,
+    /// Physical lines in the block.
+    lines: usize,
+}
+
+impl Block {
+    /// Parses the lines of `text` (whole lines; none continues past the end) into `self`.
+    fn parse(&mut self, text: &[u8]) {
+        self.statements.clear();
+        self.vertices.clear();
+        self.corners.clear();
+        self.raw.clear();
+        self.text.clear();
+        let mut joined: Vec<u8> = Vec::new();
+        let (mut pos, mut line) = (0, 0);
+        while pos < text.len() {
+            let (raw, next) = next_line(text, pos);
+            pos = next;
+            line += 1;
+            let start_line = line;
+            let mut stripped = strip_comment(raw);
+            if let Some(head) = stripped.strip_suffix(b"\\") {
+                // Continuation: rare, so only this path copies.
+                joined.clear();
+                joined.extend_from_slice(head);
+                joined.push(b' ');
+                while pos < text.len() {
+                    let (raw, next) = next_line(text, pos);
+                    pos = next;
+                    line += 1;
+                    let t = strip_comment(raw);
+                    if let Some(head) = t.strip_suffix(b"\\") {
+                        joined.extend_from_slice(head);
+                        joined.push(b' ');
+                    } else {
+                        joined.extend_from_slice(t);
+                        break;
+                    }
+                }
+                stripped = &joined;
+            }
+            self.statement(stripped, start_line);
+        }
+        self.lines = line;
+    }
+
+    fn statement(&mut self, text: &[u8], line: usize) {
+        let mut toks = Tokens::new(text);
+        let statement = match toks.next() {
+            None => return,
+            Some(b"v") => match vertex_coordinates(toks) {
+                Ok(at) => {
+                    self.vertices.push(DVec3::from_array(at));
+                    if let Some(Statement::Vertices { line: first, count }) =
+                        self.statements.last_mut()
+                        && *first + *count == line
+                    {
+                        *count += 1;
+                        return;
+                    }
+                    Statement::Vertices { line, count: 1 }
+                }
+                Err(message) => Statement::BadVertex { line, message },
+            },
+            Some(b"f") => self.face(toks, line),
+            Some(_) => {
+                let start = self.text.len();
+                self.text.extend_from_slice(text);
+                let end = self.text.len();
+                Statement::Other { line, start, end }
+            }
+        };
+        self.statements.push(statement);
+    }
+
+    /// A face: plain positive indices straight to 0-based corners, anything else as written.
+    fn face(&mut self, toks: Tokens, line: usize) -> Statement {
+        let start = self.corners.len();
+        let mut max = 0;
+        for t in toks.clone() {
+            match plain_index(t) {
+                Some(i) => {
+                    max = max.max(i);
+                    self.corners.push(i - 1);
+                }
+                None => {
+                    self.corners.truncate(start);
+                    return self.raw_face(toks, line);
+                }
+            }
+        }
+        let len = self.corners.len() - start;
+        if len < 3 {
+            self.corners.truncate(start);
+            return self.raw_face(toks, line);
+        }
+        Statement::Face { line, len, max }
+    }
+
+    fn raw_face(&mut self, toks: Tokens, line: usize) -> Statement {
+        let start = self.raw.len();
+        let mut bad = None;
+        for t in toks {
+            match raw_corner(t) {
+                Ok(c) => self.raw.push(c),
+                Err(message) => {
+                    bad = Some(message);
                     break;
                 }
             }
-            text = &joined;
         }
-        parser.statement(text, start_line)?;
+        let len = self.raw.len() - start;
+        Statement::RawFace { line, len, bad }
     }
-    parser.finish()
+}
+
+/// A corner that is a vertex index alone, in 1..=u32::MAX, written in decimal digits.
+#[inline]
+fn plain_index(t: &[u8]) -> Option<u32> {
+    if t.is_empty() || t.len() > 10 {
+        return None;
+    }
+    let mut v: u64 = 0;
+    for &d in t {
+        if !d.is_ascii_digit() {
+            return None;
+        }
+        v = v * 10 + (d - b'0') as u64;
+    }
+    u32::try_from(v).ok().filter(|&v| v > 0)
+}
+
+/// The three coordinates of a `v` line (anything after z, w or r g b colours, is ignored).
+fn vertex_coordinates(mut toks: Tokens) -> Result<[f64; 3], String> {
+    let mut c = [0.0f64; 3];
+    for (i, slot) in c.iter_mut().enumerate() {
+        let Some(t) = toks.next() else {
+            return Err(format!("vertex has {i} coordinates, needs 3"));
+        };
+        *slot = parse_coord(t)?;
+    }
+    Ok(c)
+}
+
+/// A face corner's indices, or the message saying why it is not one.
+fn raw_corner(t: &[u8]) -> Result<RawCorner, String> {
+    let mut parts = t.split(|&b| b == b'/');
+    let v = parts.next().unwrap_or(&[]);
+    let tex = parts.next();
+    let nor = parts.next();
+    if parts.next().is_some()
+        || tex.is_some_and(|p| !p.is_empty() && parse_int(p).is_none())
+        || nor.is_some_and(|p| !p.is_empty() && parse_int(p).is_none())
+    {
+        return Err(format!(
+            "bad face corner '{}' (expected v, v/t, v//n or v/t/n)",
+            show(t)
+        ));
+    }
+    let Some(v) = parse_int(v) else {
+        return Err(format!("bad vertex index '{}'", show(t)));
+    };
+    let index = |p: Option<&[u8]>| p.filter(|p| !p.is_empty()).and_then(parse_int);
+    Ok(RawCorner {
+        v,
+        tex: index(tex),
+        nor: index(nor),
+    })
 }
 
 /// A face as read in the first pass: its corners are the next `len` entries of `Parser::corners`.
@@ -105,7 +348,8 @@ struct Parser<'a> {
     builder: SceneBuilder,
     /// Corner indices (0-based, already resolved) of all faces, face after face.
     corners: Vec<u32>,
-    /// Per corner: 0-based `vt` and `vn` index (resolved, range-checked at the end), or `NONE`.
+    /// Per corner: 0-based `vt` and `vn` index (resolved, range-checked at the end), or `NONE`;
+    /// corners past the end of a list have none (most files give no corner any).
     corner_tex: Vec<u32>,
     corner_nor: Vec<u32>,
     uvs: Vec<[f64; 2]>,
@@ -154,14 +398,88 @@ impl<'a> Parser<'a> {
         LoadError::line(self.name, line, msg)
     }
 
+    /// Hands a parsed block's statements to the scene in order; `lines_before`: the file's
+    /// lines before the block.
+    fn replay(&mut self, block: &Block, lines_before: usize) -> Result<(), LoadError> {
+        let (mut vertices, mut corners, mut raw) =
+            (&block.vertices[..], &block.corners[..], &block.raw[..]);
+        for statement in &block.statements {
+            match *statement {
+                Statement::Vertices { line, count } => {
+                    let (these, rest) = vertices.split_at(count);
+                    vertices = rest;
+                    let room = (u32::MAX as usize).saturating_sub(self.builder.vertex_count());
+                    if count > room {
+                        let line = lines_before + line + room;
+                        return Err(self.err(line, "too many vertices (more than 4294967295)"));
+                    }
+                    self.builder.add_vertices(these);
+                }
+                Statement::Face { line, len, max } => {
+                    let (these, rest) = corners.split_at(len);
+                    corners = rest;
+                    self.plain_face(these, max, lines_before + line)?
+                }
+                Statement::RawFace { line, len, ref bad } => {
+                    let (these, rest) = raw.split_at(len);
+                    raw = rest;
+                    self.face(these, bad.as_deref(), lines_before + line)?
+                }
+                Statement::Other { line, start, end } => {
+                    self.statement(&block.text[start..end], lines_before + line)?
+                }
+                Statement::BadVertex { line, ref message } => {
+                    return Err(self.err(lines_before + line, message.as_str()));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// A face of positive vertex indices alone (0-based `corners`, the largest 1-based `max`):
+    /// [`Parser::face`] without the checks that cannot fail.
+    fn plain_face(&mut self, corners: &[u32], max: u32, line: usize) -> Result<(), LoadError> {
+        let defined = self.builder.vertex_count();
+        if max as usize > defined {
+            // Forward references, kept as `vertex_index` keeps them.
+            for &c in corners {
+                self.note_forward(c as u64 + 1, line, defined);
+            }
+        }
+        self.corners.extend_from_slice(corners);
+        self.push_face(corners.len(), line)
+    }
+
+    /// Records a positive 1-based index past the `defined` vertices before its line, when it is
+    /// larger than every one recorded so far (enough to find the first still out of range at
+    /// the end).
+    fn note_forward(&mut self, i: u64, line: usize, defined: usize) {
+        if i > defined as u64 && self.forward.last().is_none_or(|&(_, m, _)| i > m) {
+            self.forward.push((line, i, defined));
+        }
+    }
+
+    /// Ends a face whose `n` corners were just added.
+    fn push_face(&mut self, n: usize, line: usize) -> Result<(), LoadError> {
+        // Face ids and corner offsets in a scene are u32.
+        if self.faces.len() >= u32::MAX as usize || self.corners.len() > u32::MAX as usize {
+            return Err(self.err(line, "too many faces or face corners for one scene"));
+        }
+        self.faces.push(FaceRec {
+            len: n as u32,
+            line,
+            slot: self.slot,
+        });
+        Ok(())
+    }
+
+    /// A statement other than `v` and `f` (which come parsed: [`Block`]).
     fn statement(&mut self, text: &[u8], line: usize) -> Result<(), LoadError> {
         let mut toks = Tokens::new(text);
         let Some(kw) = toks.next() else {
             return Ok(());
         };
         match kw {
-            b"v" => self.vertex(toks, line),
-            b"f" => self.face(toks, line),
             b"o" => {
                 let name = lossy(toks.rest());
                 let name = if name.is_empty() {
@@ -233,57 +551,43 @@ impl<'a> Parser<'a> {
         }
     }
 
-    fn vertex(&mut self, mut toks: Tokens, line: usize) -> Result<(), LoadError> {
-        let mut c = [0.0f64; 3];
-        for (i, slot) in c.iter_mut().enumerate() {
-            let Some(t) = toks.next() else {
-                return Err(self.err(line, format!("vertex has {i} coordinates, needs 3")));
-            };
-            *slot = parse_coord(t).map_err(|m| self.err(line, m))?;
-        }
-        // Anything after z (w, or r g b colours) is ignored.
-        if self.builder.vertex_count() >= u32::MAX as usize {
-            return Err(self.err(line, "too many vertices (more than 4294967295)"));
-        }
-        self.builder.add_vertex(DVec3::from_array(c));
-        Ok(())
-    }
-
-    fn face(&mut self, toks: Tokens, line: usize) -> Result<(), LoadError> {
+    /// A face: its corners resolved in order, then `bad` (the syntax error of the corner after
+    /// them), if any.
+    fn face(&mut self, raw: &[RawCorner], bad: Option<&str>, line: usize) -> Result<(), LoadError> {
         let defined = self.builder.vertex_count();
         let start = self.corners.len();
-        for t in toks {
-            match self.corner(t, line, defined) {
+        let truncate = |p: &mut Self| {
+            p.corners.truncate(start);
+            p.corner_tex.truncate(start.min(p.corner_tex.len()));
+            p.corner_nor.truncate(start.min(p.corner_nor.len()));
+        };
+        for c in raw {
+            match self.corner(c, line, defined) {
                 Ok((v, tex, nor)) => {
                     self.corners.push(v);
-                    self.corner_tex.push(tex);
-                    self.corner_nor.push(nor);
+                    for (list, i) in [(&mut self.corner_tex, tex), (&mut self.corner_nor, nor)] {
+                        if i != NONE {
+                            list.resize(self.corners.len() - 1, NONE);
+                            list.push(i);
+                        }
+                    }
                 }
                 Err(e) => {
-                    self.corners.truncate(start);
-                    self.corner_tex.truncate(start);
-                    self.corner_nor.truncate(start);
+                    truncate(self);
                     return Err(e);
                 }
             }
         }
+        if let Some(message) = bad {
+            truncate(self);
+            return Err(self.err(line, message));
+        }
         let n = self.corners.len() - start;
         if n < 3 {
-            self.corners.truncate(start);
-            self.corner_tex.truncate(start);
-            self.corner_nor.truncate(start);
+            truncate(self);
             return Err(self.err(line, format!("face has {n} corners, needs at least 3")));
         }
-        // Face ids and corner offsets in a scene are u32.
-        if self.faces.len() >= u32::MAX as usize || self.corners.len() > u32::MAX as usize {
-            return Err(self.err(line, "too many faces or face corners for one scene"));
-        }
-        self.faces.push(FaceRec {
-            len: n as u32,
-            line,
-            slot: self.slot,
-        });
-        Ok(())
+        self.push_face(n, line)
     }
 
     /// Resolves one face corner to 0-based vertex, texture-coordinate and normal indices (the
@@ -291,14 +595,13 @@ impl<'a> Parser<'a> {
     /// what is defined so far at the end.
     fn corner(
         &mut self,
-        t: &[u8],
+        c: &RawCorner,
         line: usize,
         defined: usize,
     ) -> Result<(u32, u32, u32), LoadError> {
-        let v = self.vertex_index(t, line, defined)?;
-        let mut parts = t.split(|&b| b == b'/').skip(1);
-        let tex = self.attr_index(parts.next(), "texture coordinate", self.uvs.len(), line)?;
-        let nor = self.attr_index(parts.next(), "normal", self.normals.len(), line)?;
+        let v = self.vertex_index(c.v, line, defined)?;
+        let tex = self.attr_index(c.tex, "texture coordinate", self.uvs.len(), line)?;
+        let nor = self.attr_index(c.nor, "normal", self.normals.len(), line)?;
         Ok((v, tex, nor))
     }
 
@@ -331,15 +634,15 @@ impl<'a> Parser<'a> {
         Ok(Some((defined as u64 - abs) as u32))
     }
 
-    /// A `vt` or `vn` index of a corner (syntax already checked): 0-based, or `NONE` when empty.
+    /// A `vt` or `vn` index of a corner: 0-based, or `NONE` when not given.
     fn attr_index(
         &self,
-        part: Option<&[u8]>,
+        index: Option<i64>,
         what: &str,
         defined: usize,
         line: usize,
     ) -> Result<u32, LoadError> {
-        let Some(i) = part.filter(|p| !p.is_empty()).and_then(parse_int) else {
+        let Some(i) = index else {
             return Ok(NONE);
         };
         if let Some(resolved) =
@@ -354,26 +657,7 @@ impl<'a> Parser<'a> {
         Ok((i - 1) as u32)
     }
 
-    fn vertex_index(&mut self, t: &[u8], line: usize, defined: usize) -> Result<u32, LoadError> {
-        let mut parts = t.split(|&b| b == b'/');
-        let v = parts.next().unwrap_or(&[]);
-        let tex = parts.next();
-        let nor = parts.next();
-        if parts.next().is_some()
-            || tex.is_some_and(|p| !p.is_empty() && parse_int(p).is_none())
-            || nor.is_some_and(|p| !p.is_empty() && parse_int(p).is_none())
-        {
-            return Err(self.err(
-                line,
-                format!(
-                    "bad face corner '{}' (expected v, v/t, v//n or v/t/n)",
-                    show(t)
-                ),
-            ));
-        }
-        let Some(i) = parse_int(v) else {
-            return Err(self.err(line, format!("bad vertex index '{}'", show(t))));
-        };
+    fn vertex_index(&mut self, i: i64, line: usize, defined: usize) -> Result<u32, LoadError> {
         if let Some(resolved) = self.zero_or_relative(i, defined, "vertex", "vertices", line)? {
             return Ok(resolved);
         }
@@ -386,9 +670,7 @@ impl<'a> Parser<'a> {
                 ),
             ));
         }
-        if i > defined as u64 && self.forward.last().is_none_or(|&(_, m, _)| i > m) {
-            self.forward.push((line, i, defined));
-        }
+        self.note_forward(i, line, defined);
         Ok((i - 1) as u32)
     }
 
@@ -468,16 +750,24 @@ impl<'a> Parser<'a> {
                 )
             });
         // Texture and normal indices: the first face (and its first bad corner) with either.
+        let given = self.corner_tex.len().max(self.corner_nor.len());
         let mut start = 0usize;
         for f in &self.faces {
+            if start >= given {
+                break;
+            }
             if first.as_ref().is_some_and(|(l, _)| *l <= f.line) {
                 break;
             }
             let end = start + f.len as usize;
             for k in start..end {
                 for (what, i, total) in [
-                    ("texture coordinate", self.corner_tex[k], self.uvs.len()),
-                    ("normal", self.corner_nor[k], self.normals.len()),
+                    (
+                        "texture coordinate",
+                        attr(&self.corner_tex, k),
+                        self.uvs.len(),
+                    ),
+                    ("normal", attr(&self.corner_nor, k), self.normals.len()),
                 ] {
                     if i != NONE
                         && i as usize >= total
@@ -537,12 +827,15 @@ impl<'a> Parser<'a> {
                 None => *default.get_or_insert_with(|| b.default_material()),
             };
             if let Some(c) = self.corners.get(start..end) {
-                let tex = &self.corner_tex[start..end];
-                let nor = &self.corner_nor[start..end];
-                let uvs: Option<Vec<[f64; 2]>> = (!tex.contains(&NONE))
-                    .then(|| tex.iter().map(|&i| self.uvs[i as usize]).collect());
-                let normals: Option<Vec<DVec3>> = (!nor.contains(&NONE))
-                    .then(|| nor.iter().map(|&i| self.normals[i as usize]).collect());
+                let given = |list: &[u32]| list.len() >= end && !list[start..end].contains(&NONE);
+                let uvs: Option<Vec<[f64; 2]>> = given(&self.corner_tex).then(|| {
+                    let tex = &self.corner_tex[start..end];
+                    tex.iter().map(|&i| self.uvs[i as usize]).collect()
+                });
+                let normals: Option<Vec<DVec3>> = given(&self.corner_nor).then(|| {
+                    let nor = &self.corner_nor[start..end];
+                    nor.iter().map(|&i| self.normals[i as usize]).collect()
+                });
                 let attrs = CornerAttrs {
                     normals: normals.as_deref(),
                     uvs: uvs.as_deref(),
@@ -564,6 +857,11 @@ impl<'a> Parser<'a> {
             }
         })
     }
+}
+
+/// Corner `k`'s entry in a `vt` or `vn` index list that may stop short of it.
+fn attr(list: &[u32], k: usize) -> u32 {
+    list.get(k).copied().unwrap_or(NONE)
 }
 
 #[cfg(unix)]
@@ -738,5 +1036,94 @@ mod tests {
         assert_eq!(e.location, Location::File);
         let e = load_str("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n").unwrap_err();
         assert!(e.message.contains("degenerate"), "{e}");
+    }
+
+    /// The scene's geometry and structure as text, to compare two loads.
+    fn shape(s: &Scene) -> String {
+        format!(
+            "{:?}\n{:?}\n{:?}\n{:?}\n{:?}\n{:?}",
+            s.positions, s.faces, s.corners, s.meshes, s.corner_normals, s.stats.warnings
+        )
+    }
+
+    /// A grid of `n` x `n` vertices and its triangles, more than one batch of blocks for
+    /// n = 450 (11 MiB). `fancy`: the same statements written every other way the format
+    /// allows (relative indices, CRLF, comments, blank lines, continued lines).
+    fn grid_obj(n: usize, fancy: bool) -> String {
+        use std::fmt::Write;
+        let mut s = String::new();
+        for i in 0..n * n {
+            let (x, y) = (i % n, i / n);
+            let end = if fancy && i % 7 == 0 { "\r\n" } else { "\n" };
+            write!(s, "v {x} {y} {}{end}", (x * y) % 5).unwrap();
+            if fancy && i % 1000 == 0 {
+                s.push_str("# a comment\n\n");
+            }
+        }
+        let mut face = 0;
+        for y in 0..n - 1 {
+            for x in 0..n - 1 {
+                let a = y * n + x + 1;
+                for t in [[a, a + 1, a + n + 1], [a, a + n + 1, a + n]] {
+                    if face % 50_000 == 0 {
+                        writeln!(s, "o part{face}").unwrap();
+                    }
+                    let total = n * n;
+                    let c = t.map(|c| {
+                        if fancy && face % 3 == 0 {
+                            format!("-{}", total + 1 - c)
+                        } else {
+                            c.to_string()
+                        }
+                    });
+                    if fancy && face % 997 == 0 {
+                        writeln!(s, "f {} \\\n {} {} # continued", c[0], c[1], c[2]).unwrap();
+                    } else {
+                        writeln!(s, "f {} {} {}", c[0], c[1], c[2]).unwrap();
+                    }
+                    face += 1;
+                }
+            }
+        }
+        s
+    }
+
+    #[test]
+    fn a_file_of_many_blocks_loads_as_its_lines_read_one_by_one() {
+        let plain = grid_obj(450, false);
+        let fancy = grid_obj(450, true);
+        assert!(
+            fancy.len() > BLOCKS_PER_BATCH << 20,
+            "{} bytes",
+            fancy.len()
+        );
+        let a = load_str(&plain).unwrap();
+        let b = load_str(&fancy).unwrap();
+        assert_eq!(a.faces.len(), 2 * 449 * 449);
+        assert_eq!(a.meshes.len(), a.faces.len().div_ceil(50_000));
+        assert!(shape(&a) == shape(&b), "the two spellings differ");
+        // Line numbers run on across blocks and batches.
+        let lines = fancy.bytes().filter(|&b| b == b'\n').count();
+        let e = load_str(&format!("{fancy}f 1 2 x\n")).unwrap_err();
+        assert_eq!(line_of(&e), lines + 1, "{e}");
+        let e = load_str(&format!("{fancy}f 1 2 {}\n", 450 * 450 + 1)).unwrap_err();
+        assert_eq!(line_of(&e), lines + 1, "{e}");
+    }
+
+    #[test]
+    fn a_bad_line_before_a_read_failure_further_on_is_the_error() {
+        let long = "x".repeat(crate::scene::input::MAX_LINE + (1 << 20));
+        let e = load_str(&format!("v 0 0 0\nv bad 0 0\n{long}")).unwrap_err();
+        assert_eq!(line_of(&e), 2, "{e}");
+        assert!(e.message.contains("bad number"), "{e}");
+        let e = load_str(&format!("v 0 0 0\n{long}")).unwrap_err();
+        assert!(e.message.contains("line 2 is longer than"), "{e}");
+    }
+
+    #[test]
+    fn a_forward_reference_names_the_first_corner_out_of_range() {
+        let vertices = "v 0 0 0\n".repeat(8);
+        let e = load_str(&format!("f 9 12 1\n{vertices}")).unwrap_err();
+        assert!(e.message.contains("vertex index 9 out of range"), "{e}");
     }
 }
