@@ -32,11 +32,17 @@ use super::strips::pop_giving_back;
 use crate::exact::polygon::Piece;
 use crate::project::ScreenScene;
 use rayon::prelude::*;
+use rustc_hash::FxBuildHasher;
+use smallvec::SmallVec;
 use std::cmp::Ordering;
+use std::hash::BuildHasher;
 
 /// Occlusion cells per piece (about): finer cells follow the contour more closely but cost more
 /// to fill; one per piece measured best on the bunny and the teapot (0.25 and 4 did worse).
 pub(crate) const CELLS_PER_PIECE: f64 = 1.0;
+
+/// The cells' rows are filled in this many bands, on all cores.
+const ROW_BANDS: usize = 32;
 
 /// Removes from `pieces` (the pieces of whole polygons) those facing away that the occlusion
 /// cells prove hidden; returns how many. What is left has the same visible set.
@@ -194,14 +200,12 @@ impl Occlusion {
         };
         // Cells a contour side may meet are not covered (NaN marks them until the end). A
         // contour side is one that no front polygon runs along the other way: the sides, by
-        // their ends in one order, then by direction, come in runs of one segment. (Sorted, 8
-        // bytes a side: a hash set of the sides' ends took 140 MB at its peak on a million
-        // triangles.)
-        let mut sides: Vec<(u32, u32)> = front
-            .iter()
-            .flat_map(|&k| (0..screen.polys[k as usize].len).map(move |i| (k, i)))
-            .collect();
-        let ends = |&(k, i): &(u32, u32)| {
+        // their ends in one order, then by direction, come in runs of one segment. Sorted by a
+        // hash of the segment (16 bytes a side; a hash set of the sides' ends took 140 MB at its
+        // peak on a million triangles, and sorting by the ends themselves looked them up in
+        // every comparison: half of this function's time), then each run of one hash by the
+        // ends, exactly.
+        let ends = |k: u32, i: u32| {
             let p = &screen.polys[k as usize];
             let (u, v) = (
                 screen.corner(p, i as usize),
@@ -210,51 +214,126 @@ impl Occlusion {
             ([u.x, u.y], [v.x, v.y])
         };
         // (the segment, its ends in increasing order; does the side run that way?)
-        let key = |side: &(u32, u32)| {
-            let (u, v) = ends(side);
+        let key = |(k, i): (u32, u32)| {
+            let (u, v) = ends(k, i);
             if u <= v {
                 ([u, v], true)
             } else {
                 ([v, u], false)
             }
         };
-        sides.par_sort_unstable_by_key(key);
-        for run in sides.chunk_by(|a, b| key(a).0 == key(b).0) {
-            let ([u, v], _) = key(&run[0]);
-            // Both ways (the first and last of the run differ), or a side of no length: its
-            // reverse is itself.
-            if key(&run[0]).1 == key(&run[run.len() - 1]).1 && u != v {
-                occlusion.mark_segment(u, v);
-            }
+        let mut sides: Vec<(u64, u32, u32)> = (front.par_iter().with_min_len(1024))
+            .flat_map_iter(|&k| {
+                (0..screen.polys[k as usize].len).map(move |i| {
+                    let (segment, _) = key((k, i));
+                    (FxBuildHasher.hash_one(segment), k, i)
+                })
+            })
+            .collect();
+        sides.par_sort_unstable();
+        // The contour sides' segments, found on all cores (each run looks its sides up), then
+        // marked (in any order: a mark is a NaN).
+        let contour: Vec<[[i64; 2]; 2]> = (sides.par_chunk_by(|a, b| a.0 == b.0))
+            .fold(Vec::new, |mut contour, run| {
+                let mut segments: SmallVec<[_; 2]> =
+                    run.iter().map(|&(_, k, i)| key((k, i))).collect();
+                segments.sort_unstable();
+                for same in segments.chunk_by(|a, b| a.0 == b.0) {
+                    let ([u, v], way) = same[0];
+                    // Both ways (the first and last of the run differ), or a side of no
+                    // length: its reverse is itself.
+                    if way == same[same.len() - 1].1 && u != v {
+                        contour.push([u, v]);
+                    }
+                }
+                contour
+            })
+            .reduce(Vec::new, |mut a, mut b| {
+                a.append(&mut b);
+                a
+            });
+        for [u, v] in contour {
+            occlusion.mark_segment(u, v);
         }
         drop(sides);
-        // The far bounds, and the centres inside a front piece.
-        let mut inside = vec![false; occlusion.far.len()];
-        for p in pieces.iter().filter(|p| ccw(p.poly)) {
-            let b = bounds(p);
-            let depth = depth::Farthest::of(screen, p, b);
-            let (origin, size) = (occlusion.origin, occlusion.size);
-            occlusion.for_cells(b, |far, [i, j]| {
-                if far.is_nan() {
-                    return;
-                }
-                let rect = [
-                    (origin[0] + i * size[0]) as f64,
-                    (origin[1] + j * size[1]) as f64,
-                    (origin[0] + (i + 1) * size[0]) as f64,
-                    (origin[1] + (j + 1) * size[1]) as f64,
-                ];
-                *far = far.max(depth.within(rect));
-                let k = (j * count[0] + i) as usize;
-                if !inside[k] {
-                    let (x, y) = (
-                        origin[0] + i * size[0] + size[0] / 2,
-                        origin[1] + j * size[1] + size[1] / 2,
-                    );
-                    inside[k] = p.lines().all(|l| l.sign_at_grid(x, y) != Ordering::Less);
+        // The far bounds, and the centres inside a front piece, band of cell rows by band on
+        // all cores: a band writes its own rows only, visiting the pieces whose cells reach
+        // them (a piece across bands is visited by each). Each cell's bound is a maximum and
+        // its flag an `or`, so the order of the pieces does not matter.
+        let fronts: Vec<&Piece> = pieces.iter().copied().filter(|p| ccw(p.poly)).collect();
+        let (boxes, cells): (Vec<[f64; 4]>, Vec<[i64; 4]>) = (fronts.par_iter().with_min_len(1024))
+            .map(|p| {
+                let b = bounds(p);
+                (b, occlusion.cells_of(b))
+            })
+            .unzip();
+        let mut far = std::mem::take(&mut occlusion.far);
+        let mut inside = vec![false; far.len()];
+        let (origin, size, width) = (occlusion.origin, occlusion.size, count[0]);
+        let band_rows = (count[1] as usize).div_ceil(ROW_BANDS).max(1);
+        let band = band_rows * width as usize;
+        let bands = far.len().div_ceil(band);
+        // The pieces of each band, by a counting sort: band n's are
+        // `in_band[starts[n]..starts[n + 1]]`, in piece order.
+        let bands_of = |c: &[i64; 4]| {
+            let band_of = |j: i64| j.clamp(0, count[1] - 1) as usize / band_rows;
+            band_of(c[2])..=band_of(c[3])
+        };
+        let mut starts = vec![0usize; bands + 1];
+        for c in &cells {
+            for n in bands_of(c) {
+                starts[n + 1] += 1;
+            }
+        }
+        for n in 0..bands {
+            starts[n + 1] += starts[n];
+        }
+        let mut in_band = vec![0u32; starts[bands]];
+        let mut next = starts.clone();
+        for (k, c) in cells.iter().enumerate() {
+            for n in bands_of(c) {
+                in_band[next[n]] = k as u32;
+                next[n] += 1;
+            }
+        }
+        (far.par_chunks_mut(band).zip(inside.par_chunks_mut(band)))
+            .enumerate()
+            .for_each(|(n, (far, inside))| {
+                let rows = [(n * band_rows) as i64, ((n + 1) * band_rows) as i64 - 1];
+                for &k in &in_band[starts[n]..starts[n + 1]] {
+                    let (p, b, [i0, i1, j0, j1]) =
+                        (fronts[k as usize], boxes[k as usize], cells[k as usize]);
+                    let (j0, j1) = (j0.max(rows[0]), j1.min(rows[1]).min(count[1] - 1));
+                    if j0 > j1 {
+                        continue;
+                    }
+                    let depth = depth::Farthest::of(screen, p, b);
+                    for j in j0..=j1 {
+                        for i in i0.max(0)..=i1.min(width - 1) {
+                            let k = ((j - rows[0]) * width + i) as usize;
+                            if far[k].is_nan() {
+                                continue;
+                            }
+                            let rect = [
+                                (origin[0] + i * size[0]) as f64,
+                                (origin[1] + j * size[1]) as f64,
+                                (origin[0] + (i + 1) * size[0]) as f64,
+                                (origin[1] + (j + 1) * size[1]) as f64,
+                            ];
+                            far[k] = far[k].max(depth.within(rect));
+                            if !inside[k] {
+                                let (x, y) = (
+                                    origin[0] + i * size[0] + size[0] / 2,
+                                    origin[1] + j * size[1] + size[1] / 2,
+                                );
+                                inside[k] =
+                                    p.lines().all(|l| l.sign_at_grid(x, y) != Ordering::Less);
+                            }
+                        }
+                    }
                 }
             });
-        }
+        occlusion.far = far;
         for (far, inside) in occlusion.far.iter_mut().zip(inside) {
             if !inside || far.is_nan() {
                 *far = f64::INFINITY;
@@ -309,16 +388,6 @@ impl Occlusion {
             let [_, _, j0, j1] = self.cells_of(col);
             for j in j0.max(0)..=j1.min(self.count[1] - 1) {
                 self.far[(j * self.count[0] + i) as usize] = f64::NAN;
-            }
-        }
-    }
-
-    /// Calls `f(far, [i, j])` for every cell (within the grid) that the box `b` may meet.
-    fn for_cells(&mut self, b: [f64; 4], mut f: impl FnMut(&mut f64, [i64; 2])) {
-        let [i0, i1, j0, j1] = self.cells_of(b);
-        for j in j0.max(0)..=j1.min(self.count[1] - 1) {
-            for i in i0.max(0)..=i1.min(self.count[0] - 1) {
-                f(&mut self.far[(j * self.count[0] + i) as usize], [i, j]);
             }
         }
     }
