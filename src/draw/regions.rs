@@ -39,6 +39,7 @@ use crate::scene::{FaceId, Scene, newell_normal};
 use crate::visibility::grid::for_each_near_edges;
 use glam::DVec3;
 use hashbrown::{HashTable, hash_table};
+use rayon::prelude::*;
 use rustc_hash::{FxBuildHasher, FxHashMap};
 use smallvec::SmallVec;
 use std::cmp::Ordering;
@@ -138,11 +139,11 @@ pub fn regions_into<K: Ord, T>(
 /// where, only which abutting regions of the same paint share a path. It is not exact
 /// coplanarity on purpose: CAD files written as decimals put the triangles of one flat face a
 /// rounding error off each other's plane, and their seams would show.
-pub fn surfaces<P: Eq + std::hash::Hash>(
+pub fn surfaces<P: Eq + std::hash::Hash + Send>(
     scene: &Scene,
     screen: &ScreenScene,
     eye: DVec3,
-    paint: impl Fn(usize) -> P,
+    paint: impl Fn(usize) -> P + Sync,
 ) -> Vec<u32> {
     let size = scene
         .bounds()
@@ -168,29 +169,62 @@ pub fn surfaces<P: Eq + std::hash::Hash>(
 /// Labels for items `0..n` by `key(index)`: equal keys, equal labels, numbered in order of first
 /// appearance. The table holds the first item of each key (4 bytes a slot, where a table of the
 /// keys took 64 in [`surfaces`]: a curved surface of a million faces is a million labels, 134
-/// MB of table), found by the key's `hash` and compared by the full keys (`key` recomputed for
-/// the first item). Room for every item from the start, so the table never grows (growing
-/// would hold the old table and the new one at once, and rehash every key).
-fn labels_by_key<K: Eq>(n: usize, key: impl Fn(usize) -> K, hash: impl Fn(&K) -> u64) -> Vec<u32> {
+/// MB of table), found by the key's `hash` and compared by the full keys. The keys are computed
+/// [`LABEL_CHUNK`] items at a time on all cores (computing a key is most of the work) and
+/// kept for their chunk only; an item with the key of the item before it (a quad's second
+/// triangle, a flat face's fan) takes its label without the table; a key of an earlier chunk
+/// is computed again to compare. Room for every item from the start, so the table never grows
+/// (growing would hold the old table and the new one at once, and rehash every key).
+fn labels_by_key<K: Eq + Send>(
+    n: usize,
+    key: impl Fn(usize) -> K + Sync,
+    hash: impl Fn(&K) -> u64,
+) -> Vec<u32> {
     let mut first_of_key: HashTable<u32> = HashTable::with_capacity(n);
     let mut labels: Vec<u32> = Vec::with_capacity(n);
     let mut next = 0u32;
-    for index in 0..n {
-        let k = key(index);
-        let same = |&first: &u32| key(first as usize) == k;
-        let rehash = |&first: &u32| hash(&key(first as usize));
-        let label = match first_of_key.entry(hash(&k), same, rehash) {
-            hash_table::Entry::Occupied(e) => labels[*e.get() as usize],
-            hash_table::Entry::Vacant(e) => {
-                e.insert(index as u32);
-                next += 1;
-                next - 1
+    let mut last: Option<K> = None;
+    for start in (0..n).step_by(LABEL_CHUNK) {
+        let keys: Vec<K> = (start..n.min(start + LABEL_CHUNK))
+            .into_par_iter()
+            .map(&key)
+            .collect();
+        for (j, k) in keys.iter().enumerate() {
+            let index = start + j;
+            let before = if j > 0 {
+                keys.get(j - 1)
+            } else {
+                last.as_ref()
+            };
+            if before == Some(k) {
+                labels.push(labels[index - 1]);
+                continue;
             }
-        };
-        labels.push(label);
+            let same = |&first: &u32| match (first as usize).checked_sub(start) {
+                Some(f) => keys[f] == *k,
+                None => key(first as usize) == *k,
+            };
+            let rehash = |&first: &u32| match (first as usize).checked_sub(start) {
+                Some(f) => hash(&keys[f]),
+                None => hash(&key(first as usize)),
+            };
+            let label = match first_of_key.entry(hash(k), same, rehash) {
+                hash_table::Entry::Occupied(e) => labels[*e.get() as usize],
+                hash_table::Entry::Vacant(e) => {
+                    e.insert(index as u32);
+                    next += 1;
+                    next - 1
+                }
+            };
+            labels.push(label);
+        }
+        last = keys.into_iter().next_back();
     }
     labels
 }
+
+/// Items whose keys [`labels_by_key`] computes at once: small next to the table.
+const LABEL_CHUNK: usize = 1 << 14;
 
 /// The outline of disjoint pieces (with their [`shared_vertices`]): the rings of their union,
 /// outer rings and holes, even-odd; merged as one group, so it too depends only on the point
@@ -1019,21 +1053,28 @@ pub(super) mod tests {
 
     /// Labels by key are numbered by first appearance, equal exactly for equal keys, whatever
     /// the hashes: with the real hash, with one that maps every key to a few values, and with
-    /// one value for all (the table then tells keys apart by comparing them alone).
+    /// one value for all (the table then tells keys apart by comparing them alone). Over
+    /// several chunks of keys (keys of earlier chunks are computed again), with runs of one key.
     #[test]
     fn labels_by_key_are_by_key_whatever_the_hash_collides() {
         let mut state = 0x2545_f491_4f6c_dd1du64;
-        let keys: Vec<(u8, [i64; 2])> = (0..3000)
-            .map(|_| {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                (
-                    (state % 5) as u8,
-                    [(state >> 8) as i64 % 7, (state >> 16) as i64 % 11],
-                )
-            })
-            .collect();
+        let mut keys: Vec<(u8, [i64; 2])> = Vec::new();
+        while keys.len() < 2 * LABEL_CHUNK + 1000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let k = (
+                (state % 5) as u8,
+                [(state >> 8) as i64 % 7, (state >> 16) as i64 % 11],
+            );
+            // Runs of one key, some across a chunk's end.
+            let run = if keys.len() % LABEL_CHUNK > LABEL_CHUNK - 5 {
+                9
+            } else {
+                1 + (state >> 40) as usize % 3
+            };
+            keys.extend(std::iter::repeat_n(k, run));
+        }
         let mut expected = Vec::new();
         let mut seen: BTreeMap<(u8, [i64; 2]), u32> = BTreeMap::new();
         for k in &keys {
