@@ -30,7 +30,7 @@
 //!
 //! The file is read a batch of blocks of whole lines at a time (see [`super::input`]), each
 //! block's numbers parsed on all cores and its statements then taken in file order: memory holds
-//! the scene being built and one batch (about 8 MiB) of text, not the file.
+//! the scene being built and two batches (about 16 MiB) of text, not the file.
 
 use super::input::Input;
 use super::text::{
@@ -60,7 +60,9 @@ const BLOCKS_PER_BATCH: usize = 8;
 /// ([`Block::parse`]: numbers and index syntax, which need nothing from the rest of the file),
 /// then hands their statements to the parser in file order, which resolves indices against what
 /// was defined before each line and stops at the first error. So the scene, the warnings and the
-/// first error are those of reading the lines one by one; memory holds one batch of text.
+/// first error are those of reading the lines one by one. While a batch is parsed on the pool,
+/// this thread hands the batch before it to the parser and reads the batch after it: memory
+/// holds two batches of text (about 16 MiB), not the file.
 fn parse<R: Read>(
     input: &mut Input<R>,
     name: &str,
@@ -68,48 +70,73 @@ fn parse<R: Read>(
 ) -> Result<Scene, LoadError> {
     let mut parser = Parser::new(name, dir);
     let mut lines_before = 0usize;
-    let mut texts: Vec<Vec<u8>> = Vec::new();
-    let mut blocks: Vec<Block> = Vec::new();
-    loop {
-        let mut read = 0;
-        // The block in which reading failed (its last line may be cut short), if any.
-        let mut failed_in = None;
-        while read < BLOCKS_PER_BATCH {
-            if texts.len() == read {
-                texts.push(Vec::new());
-            }
-            if !input.lines_block(&mut texts[read], continues) {
-                break;
-            }
-            if input.failed() {
-                failed_in.get_or_insert(read);
-            }
-            read += 1;
-        }
-        if read == 0 {
-            break;
-        }
-        blocks.resize_with(read, Block::default);
-        texts[..read]
-            .par_iter()
-            .zip(blocks.par_iter_mut())
-            .for_each(|(text, block)| block.parse(text));
-        for (k, block) in blocks.iter().enumerate() {
-            if let Err(e) = parser.replay(block, lines_before) {
-                // Read line by line, the file would not have been read past this block: a
-                // read error met later (read ahead) is not its first problem.
-                if failed_in.is_none_or(|f| f > k) {
-                    input.forget_error();
+    // Two slots: one batch parsed while the other's blocks are replayed and its text refilled.
+    let mut texts: [Vec<Vec<u8>>; 2] = Default::default();
+    let mut blocks: [Vec<Block>; 2] = Default::default();
+    // Per slot: the block in which reading failed (its last line may be cut short), if any.
+    let mut failed_in: [Option<usize>; 2] = [None, None];
+    let mut to_parse = read_batch(input, &mut texts[0], &mut failed_in[0]);
+    let mut to_replay = 0;
+    let mut slot = 0;
+    while to_parse > 0 || to_replay > 0 {
+        let ([t0, t1], [b0, b1]) = (&mut texts, &mut blocks);
+        let (text, next_text, parsed, parsed_before) = match slot {
+            0 => (&*t0, t1, b0, &*b1),
+            _ => (&*t1, t0, b1, &*b0),
+        };
+        let more = to_parse == BLOCKS_PER_BATCH;
+        let failed_before = &mut failed_in[1 - slot];
+        let next = rayon::in_place_scope(|scope| {
+            scope.spawn(|_| {
+                parsed.resize_with(to_parse, Block::default);
+                (text[..to_parse].par_iter())
+                    .zip(parsed.par_iter_mut())
+                    .for_each(|(text, block)| block.parse(text));
+            });
+            for (k, block) in parsed_before[..to_replay].iter().enumerate() {
+                if let Err(e) = parser.replay(block, lines_before) {
+                    // Read line by line, the file would not have been read past this block:
+                    // a read error met later (read ahead) is not its first problem.
+                    if failed_before.is_none_or(|f| f > k) {
+                        input.forget_error();
+                    }
+                    return Err(e);
                 }
-                return Err(e);
+                lines_before += block.lines;
             }
-            lines_before += block.lines;
-        }
-        if read < BLOCKS_PER_BATCH {
-            break;
-        }
+            Ok(if more {
+                read_batch(input, next_text, failed_before)
+            } else {
+                0
+            })
+        })?;
+        (to_replay, to_parse, slot) = (to_parse, next, 1 - slot);
     }
     parser.finish()
+}
+
+/// Reads up to [`BLOCKS_PER_BATCH`] blocks into `texts`; returns how many. `failed_in`: the
+/// block in which reading failed, if any.
+fn read_batch<R: Read>(
+    input: &mut Input<R>,
+    texts: &mut Vec<Vec<u8>>,
+    failed_in: &mut Option<usize>,
+) -> usize {
+    *failed_in = None;
+    let mut read = 0;
+    while read < BLOCKS_PER_BATCH {
+        if texts.len() == read {
+            texts.push(Vec::new());
+        }
+        if !input.lines_block(&mut texts[read], continues) {
+            break;
+        }
+        if input.failed() {
+            failed_in.get_or_insert(read);
+        }
+        read += 1;
+    }
+    read
 }
 
 /// Whether a line continues on the next (a trailing backslash before any comment).
