@@ -214,6 +214,37 @@ impl SceneBuilder {
         outcome
     }
 
+    /// Would [`Self::add_face_with`] keep this face whole, as it is, with no other test: three
+    /// corners at distinct positions, not collinear (exactly)? It reads the vertices only, so a
+    /// loader may ask it for many faces at once on all cores, then add those faces with
+    /// [`Self::add_plain_triangle`].
+    pub fn is_plain_triangle(&self, corners: &[u32]) -> bool {
+        let pos = &self.scene.positions;
+        let &[a, b, c] = corners else {
+            return false;
+        };
+        let (a, b, c) = (pos[a as usize], pos[b as usize], pos[c as usize]);
+        a != b && b != c && c != a && !collinear(a, b, c)
+    }
+
+    /// [`Self::add_face_with`] of a face that [`Self::is_plain_triangle`] says is plain: the
+    /// same face, without the tests again.
+    pub fn add_plain_triangle(
+        &mut self,
+        corners: &[u32],
+        material: u32,
+        attrs: CornerAttrs,
+    ) -> FaceOutcome {
+        debug_assert!(self.is_plain_triangle(corners));
+        let id = self.scene.input_faces;
+        self.scene.input_faces += 1;
+        if !self.mesh_open {
+            self.begin_mesh("mesh");
+        }
+        self.push_face(id, material, &[0, 1, 2], corners, attrs);
+        FaceOutcome::Kept
+    }
+
     /// Adds the face made of the input corners at positions `picks` of `input`.
     fn push_face(
         &mut self,

@@ -840,6 +840,23 @@ impl<'a> Parser<'a> {
             }
         }
 
+        // Which faces the builder keeps whole with no other test, asked on all cores (it reads
+        // the vertices only): most of adding a face is that test.
+        let starts: Vec<u32> = (self.faces.iter())
+            .scan(0u32, |at, f| {
+                let start = *at;
+                *at += f.len;
+                Some(start)
+            })
+            .collect();
+        let plain: Vec<bool> = (self.faces.par_iter().zip(&starts))
+            .with_min_len(4096)
+            .map(|(f, &start)| {
+                let start = start as usize;
+                b.is_plain_triangle(&self.corners[start..start + f.len as usize])
+            })
+            .collect();
+        drop(starts);
         b.begin_mesh(file_label(self.name));
         let mut objects = self.objects.into_iter().peekable();
         let mut start = 0usize;
@@ -867,7 +884,11 @@ impl<'a> Parser<'a> {
                     normals: normals.as_deref(),
                     uvs: uvs.as_deref(),
                 };
-                b.add_face_with(c, material, attrs);
+                if plain[k] {
+                    b.add_plain_triangle(c, material, attrs);
+                } else {
+                    b.add_face_with(c, material, attrs);
+                }
             }
             start = end;
         }
