@@ -73,10 +73,11 @@ impl Strips {
         }
         // Large pieces (a soup of crossing faces) would be cut into many parts, each strip
         // holding most of the scene: halve the strips until the cuts add at most a quarter.
-        let boxes: Vec<[f64; 4]> = pieces.iter().map(Piece::bounds).collect();
+        let boxes = boxes_of(pieces);
+        let centres = centres_of(&boxes);
         loop {
-            let strips = Strips::with_count(pieces, count);
-            let parts: usize = (boxes.iter())
+            let strips = Strips::at_quantiles(&centres, count);
+            let parts: usize = (boxes.par_iter())
                 .map(|b| strips.last(b) - strips.first(b) + 1)
                 .sum();
             if 4 * parts <= 5 * pieces.len() || strips.count() == 1 {
@@ -92,14 +93,14 @@ impl Strips {
         if count <= 1 || pieces.is_empty() {
             return Strips { cuts: Vec::new() };
         }
-        let mut centres: Vec<i64> = pieces
-            .iter()
-            .map(|p| {
-                let b = p.bounds();
-                (0.5 * (b[0] + b[2])).floor() as i64
-            })
-            .collect();
-        centres.sort_unstable();
+        Strips::at_quantiles(&centres_of(&boxes_of(pieces)), count)
+    }
+
+    /// [`Strips::with_count`] of pieces whose centres in x are `centres`, sorted.
+    fn at_quantiles(centres: &[i64], count: usize) -> Strips {
+        if count <= 1 || centres.is_empty() {
+            return Strips { cuts: Vec::new() };
+        }
         let mut cuts: Vec<i64> = (1..count)
             .map(|k| centres[k * centres.len() / count])
             .collect();
@@ -125,7 +126,7 @@ impl Strips {
         }
         // Sized first (an upper bound: each piece in every strip its bounds meet), so that each
         // piece is moved once: pieces are a few hundred bytes each.
-        let boxes: Vec<[f64; 4]> = pieces.iter().map(Piece::bounds).collect();
+        let boxes = boxes_of(&pieces);
         let mut sizes = vec![0usize; self.count()];
         for b in &boxes {
             for size in &mut sizes[self.first(b)..=self.last(b)] {
@@ -172,6 +173,22 @@ impl Strips {
     fn last(&self, b: &[f64; 4]) -> usize {
         self.cuts.partition_point(|&c| (c as f64) <= b[2])
     }
+}
+
+/// The pieces' bounds, on all cores.
+fn boxes_of(pieces: &[Piece]) -> Vec<[f64; 4]> {
+    (pieces.par_iter().with_min_len(1024))
+        .map(Piece::bounds)
+        .collect()
+}
+
+/// The boxes' centres in x (rounded down to grid units), sorted.
+fn centres_of(boxes: &[[f64; 4]]) -> Vec<i64> {
+    let mut centres: Vec<i64> = (boxes.iter())
+        .map(|b| (0.5 * (b[0] + b[2])).floor() as i64)
+        .collect();
+    centres.par_sort_unstable();
+    centres
 }
 
 /// Pops the last element of `list`, handing its room back to the allocator an eighth at a time
