@@ -256,23 +256,35 @@ impl Occlusion {
             occlusion.mark_segment(u, v);
         }
         drop(sides);
-        // The far bounds, and the centres inside a front piece, band of cell rows by band on
-        // all cores: a band writes its own rows only, visiting the pieces whose cells reach
-        // them (a piece across bands is visited by each). Each cell's bound is a maximum and
-        // its flag an `or`, so the order of the pieces does not matter.
         let fronts: Vec<&Piece> = pieces.iter().copied().filter(|p| ccw(p.poly)).collect();
+        let inside = occlusion.fill_far_bounds(screen, &fronts);
+        for (far, inside) in occlusion.far.iter_mut().zip(inside) {
+            if !inside || far.is_nan() {
+                *far = f64::INFINITY;
+            }
+        }
+        occlusion.back_facing = back_facing;
+        Some(occlusion)
+    }
+
+    /// Fills the far bounds (`self.far`, NaN where a contour side may pass stays NaN) and
+    /// returns which cells have their centre inside a front piece: band of cell rows by band on
+    /// all cores. A band writes its own rows only, visiting the pieces whose cells reach them
+    /// (a piece across bands is visited by each). Each cell's bound is a maximum and its flag
+    /// an `or`, so the order of the pieces does not matter.
+    fn fill_far_bounds(&mut self, screen: &ScreenScene, fronts: &[&Piece]) -> Vec<bool> {
         let (boxes, cells): (Vec<[f64; 4]>, Vec<[i64; 4]>) = (fronts.par_iter().with_min_len(1024))
             .map(|p| {
                 let b = bounds(p);
-                (b, occlusion.cells_of(b))
+                (b, self.cells_of(b))
             })
             .unzip();
-        let mut far = std::mem::take(&mut occlusion.far);
-        let mut inside = vec![false; far.len()];
-        let (origin, size, width) = (occlusion.origin, occlusion.size, count[0]);
+        let mut inside = vec![false; self.far.len()];
+        let (origin, size, count) = (self.origin, self.size, self.count);
+        let width = count[0];
         let band_rows = (count[1] as usize).div_ceil(ROW_BANDS).max(1);
         let band = band_rows * width as usize;
-        let bands = far.len().div_ceil(band);
+        let bands = self.far.len().div_ceil(band);
         // The pieces of each band, by a counting sort: band n's are
         // `in_band[starts[n]..starts[n + 1]]`, in piece order.
         let bands_of = |c: &[i64; 4]| {
@@ -296,51 +308,47 @@ impl Occlusion {
                 next[n] += 1;
             }
         }
-        (far.par_chunks_mut(band).zip(inside.par_chunks_mut(band)))
-            .enumerate()
-            .for_each(|(n, (far, inside))| {
-                let rows = [(n * band_rows) as i64, ((n + 1) * band_rows) as i64 - 1];
-                for &k in &in_band[starts[n]..starts[n + 1]] {
-                    let (p, b, [i0, i1, j0, j1]) =
-                        (fronts[k as usize], boxes[k as usize], cells[k as usize]);
-                    let (j0, j1) = (j0.max(rows[0]), j1.min(rows[1]).min(count[1] - 1));
-                    if j0 > j1 {
-                        continue;
-                    }
-                    let depth = depth::Farthest::of(screen, p, b);
-                    for j in j0..=j1 {
-                        for i in i0.max(0)..=i1.min(width - 1) {
-                            let k = ((j - rows[0]) * width + i) as usize;
-                            if far[k].is_nan() {
-                                continue;
-                            }
-                            let rect = [
-                                (origin[0] + i * size[0]) as f64,
-                                (origin[1] + j * size[1]) as f64,
-                                (origin[0] + (i + 1) * size[0]) as f64,
-                                (origin[1] + (j + 1) * size[1]) as f64,
-                            ];
-                            far[k] = far[k].max(depth.within(rect));
-                            if !inside[k] {
-                                let (x, y) = (
-                                    origin[0] + i * size[0] + size[0] / 2,
-                                    origin[1] + j * size[1] + size[1] / 2,
-                                );
-                                inside[k] =
-                                    p.lines().all(|l| l.sign_at_grid(x, y) != Ordering::Less);
-                            }
+        (self
+            .far
+            .par_chunks_mut(band)
+            .zip(inside.par_chunks_mut(band)))
+        .enumerate()
+        .for_each(|(n, (far, inside))| {
+            let rows = [(n * band_rows) as i64, ((n + 1) * band_rows) as i64 - 1];
+            for &k in &in_band[starts[n]..starts[n + 1]] {
+                let (p, b, [i0, i1, j0, j1]) =
+                    (fronts[k as usize], boxes[k as usize], cells[k as usize]);
+                let (j0, j1) = (j0.max(rows[0]), j1.min(rows[1]).min(count[1] - 1));
+                if j0 > j1 {
+                    continue;
+                }
+                let depth = depth::Farthest::of(screen, p, b);
+                for j in j0..=j1 {
+                    for i in i0.max(0)..=i1.min(width - 1) {
+                        let cell = ((j - rows[0]) * width + i) as usize;
+                        if far[cell].is_nan() {
+                            continue;
+                        }
+                        let rect = [
+                            (origin[0] + i * size[0]) as f64,
+                            (origin[1] + j * size[1]) as f64,
+                            (origin[0] + (i + 1) * size[0]) as f64,
+                            (origin[1] + (j + 1) * size[1]) as f64,
+                        ];
+                        far[cell] = far[cell].max(depth.within(rect));
+                        if !inside[cell] {
+                            let (x, y) = (
+                                origin[0] + i * size[0] + size[0] / 2,
+                                origin[1] + j * size[1] + size[1] / 2,
+                            );
+                            inside[cell] =
+                                p.lines().all(|l| l.sign_at_grid(x, y) != Ordering::Less);
                         }
                     }
                 }
-            });
-        occlusion.far = far;
-        for (far, inside) in occlusion.far.iter_mut().zip(inside) {
-            if !inside || far.is_nan() {
-                *far = f64::INFINITY;
             }
-        }
-        occlusion.back_facing = back_facing;
-        Some(occlusion)
+        });
+        inside
     }
 
     /// The cells (i0, i1, j0, j1, inclusive, unclamped) whose closed rectangles may meet the
