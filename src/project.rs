@@ -171,6 +171,19 @@ impl ScreenScene {
             .collect()
     }
 
+    /// The grid (x, y) of face `poly`'s corners when it is a triangle: a convex outline that
+    /// contains every piece of the face, so that pieces of faces apart are apart
+    /// ([`crate::exact::polygon::corners_separated`]) whatever their cuts.
+    #[inline]
+    pub fn triangle_xy(&self, poly: u32) -> Option<[[i64; 2]; 3]> {
+        let p = &self.polys[poly as usize];
+        let c: &[u32; 3] = self.corner_indices(p).try_into().ok()?;
+        Some(c.map(|i| {
+            let g = self.grid_points[i as usize];
+            [g.x, g.y]
+        }))
+    }
+
     /// Corner k of `p`.
     #[inline]
     pub fn corner(&self, p: &ScreenPoly, k: usize) -> GridPoint {

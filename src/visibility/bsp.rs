@@ -21,13 +21,11 @@
 use super::coverage::{Coverage, bounds, tie_key};
 use super::depth;
 use super::grid::{NO_BOX, joined};
-use super::initial_pieces;
 use super::strips::Counters;
 use super::visible_set::{Fragment, Stats, VisibleSet};
+use super::{initial_pieces, separated_on};
 use crate::exact::Plane;
-use crate::exact::polygon::{
-    Boundary, Piece, Split, corners_separated, separated, separated_by_lines,
-};
+use crate::exact::polygon::{Boundary, Piece, Split, corners_separated, separated_by_lines};
 use crate::exact::predicates::Line;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
@@ -204,10 +202,15 @@ fn candidates<'a>(pieces: &'a [Piece], boxes: &[[f64; 4]]) -> (Vec<Splitter>, Ve
 /// their order does not matter: the node needs no splitter. The sweep of [`box_pairs`] finds the
 /// candidate pairs; the exact separation test decides each (counted in `tests`). Stops at the
 /// first overlap.
-fn pairwise_separated(list: &[Piece], boxes: &[[f64; 4]], tests: &mut usize) -> bool {
+fn pairwise_separated(
+    screen: &ScreenScene,
+    list: &[Piece],
+    boxes: &[[f64; 4]],
+    tests: &mut usize,
+) -> bool {
     box_pairs(boxes, &vec![true; list.len()], |i, j| {
         *tests += 1;
-        separated(&list[i], &list[j])
+        separated_on(screen, &list[i], &list[j])
     })
 }
 
@@ -319,6 +322,7 @@ fn sweeps_in_x(boxes: &[[f64; 4]]) -> bool {
 /// gets the index of a piece that may hide part of it. Gives up (`false`, `blockers` partly
 /// decided) past `most_pairs` pairs that may hide one another. Adds its pair tests to `tests`.
 fn front_layer(
+    screen: &ScreenScene,
     list: &[Piece],
     boxes: &[[f64; 4]],
     depths: &[[f64; 2]],
@@ -328,11 +332,23 @@ fn front_layer(
 ) -> bool {
     let open: Vec<bool> = blockers.iter().map(|&b| b == OPEN).collect();
     // Each piece's grid corners, found once (a piece meets a dozen boxes) and kept in one flat
-    // list: piece k's are `corners[start[k]..start[k + 1]]`, none when a vertex is off the grid.
+    // list: piece k's are `corners[start[k]..start[k + 1]]`, none when a vertex is off the grid
+    // and its face is not a triangle. A cut piece (off the grid) has its triangle's corners
+    // instead (`exact[k]` false): it lies within them, so triangles apart have pieces apart.
     let (mut corners, mut start) = (Vec::new(), Vec::with_capacity(list.len() + 1));
+    let mut exact = Vec::with_capacity(list.len());
     start.push(0);
     for p in list {
-        corners.extend(p.grid_corners().into_iter().flatten());
+        match p.grid_corners() {
+            Some(c) => {
+                corners.extend(c);
+                exact.push(true);
+            }
+            None => {
+                corners.extend(screen.triangle_xy(p.poly).into_iter().flatten());
+                exact.push(false);
+            }
+        }
         start.push(corners.len());
     }
     let corners_of = |k: usize| Some(&corners[start[k]..start[k + 1]]).filter(|c| !c.is_empty());
@@ -340,10 +356,11 @@ fn front_layer(
     box_pairs(boxes, &open, |i, j| {
         *tests += 1;
         // Uncut neighbours on a surface share corners and never overlap: their corners settle
-        // it before any plane test.
+        // it before any plane test. Cut ones are apart when their triangles are.
         let apart = corners_of(i)
             .zip(corners_of(j))
-            .map(|(a, b)| corners_separated(a, b));
+            .map(|(a, b)| corners_separated(a, b))
+            .filter(|&apart| apart || (exact[i] && exact[j]));
         if apart == Some(true) {
             return true;
         }
@@ -395,9 +412,17 @@ fn plan(
     let mut best = None;
     let given = blockers.clone();
     let most_pairs = LAYER_PAIRS_PER_PIECE * list.len();
-    if !front_layer(list, boxes, &depths, &mut blockers, most_pairs, tests) {
+    if !front_layer(
+        screen,
+        list,
+        boxes,
+        &depths,
+        &mut blockers,
+        most_pairs,
+        tests,
+    ) {
         // A crowd: split it if a splitter divides it, else find its layer whatever the cost.
-        if pairwise_separated(list, boxes, tests) {
+        if pairwise_separated(screen, list, boxes, tests) {
             return Plan::Bag;
         }
         let (splitter, tally) = best_splitter(list, boxes);
@@ -406,7 +431,15 @@ fn plan(
         }
         best = Some(splitter);
         blockers = given;
-        front_layer(list, boxes, &depths, &mut blockers, usize::MAX, tests);
+        front_layer(
+            screen,
+            list,
+            boxes,
+            &depths,
+            &mut blockers,
+            usize::MAX,
+            tests,
+        );
     }
     let layer = blockers.iter().filter(|&&b| b == OPEN).count();
     if layer == list.len() {

@@ -22,6 +22,7 @@
 pub(crate) use super::live::bounds;
 use super::live::{Live, overlap};
 use super::occlusion::{CELLS_PER_PIECE, Occlusion};
+use super::separated_on;
 use super::strips::Counters;
 use crate::exact::polygon::{Piece, Split, separated};
 use crate::project::ScreenScene;
@@ -202,12 +203,15 @@ impl<'a> Coverage<'a> {
         for v in near {
             let front = self.visible.get(v).expect("live");
             self.stats.overlap_tests += parts.len();
-            let Some(first) = parts.iter().position(|p| !separated(p, front)) else {
+            let Some(first) = parts
+                .iter()
+                .position(|p| !separated_on(self.screen, p, front))
+            else {
                 continue;
             };
             next.reserve(parts.len());
             for (i, part) in parts.drain(..).enumerate() {
-                if i == first || (i > first && !separated(&part, front)) {
+                if i == first || (i > first && !separated_on(self.screen, &part, front)) {
                     clip(self.screen, part, front, &mut next);
                 } else {
                     next.push(part);
@@ -258,7 +262,7 @@ impl<'a> Coverage<'a> {
                     continue;
                 }
                 self.stats.overlap_tests += 1;
-                if separated(&parts[i].0, front) {
+                if separated_on(self.screen, &parts[i].0, front) {
                     i += 1;
                     continue;
                 }

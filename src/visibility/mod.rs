@@ -187,6 +187,19 @@ fn pieces_of_polygon(screen: &ScreenScene, poly: u32) -> SmallVec<[Piece; 1]> {
         .collect()
 }
 
+/// [`separated`](crate::exact::polygon::separated) on a screen: pieces of triangles whose
+/// corners are apart ([`ScreenScene::triangle_xy`]) are apart, with no test of their own lines.
+/// Pieces cut off the grid (by strips, splits, front pieces) mostly meet their mesh neighbours'
+/// pieces that way.
+pub(crate) fn separated_on(screen: &ScreenScene, p: &Piece, q: &Piece) -> bool {
+    use crate::exact::polygon::{corners_separated, separated_at_corners, separated_by_lines};
+    if let Some(apart) = separated_at_corners(p, q) {
+        return apart;
+    }
+    let faces = screen.triangle_xy(p.poly).zip(screen.triangle_xy(q.poly));
+    faces.is_some_and(|(a, b)| corners_separated(&a, &b)) || separated_by_lines(p, q)
+}
+
 /// A grid polygon as a pixel ring (y down, the last point not repeated). Output rounding:
 /// `Samples::col_of` and `Samples::row_of` round at most twice (the sum with 1 of a 54-bit
 /// grid value over 2^52, and the product by the image side), so each pixel coordinate is within
@@ -244,6 +257,54 @@ pub(crate) fn screen_of_polygons(polys: impl IntoIterator<Item = Vec<GridPoint>>
 mod tests {
     use super::*;
     use crate::exact::{GRID_MAX, XY_SCALE};
+
+    /// A fan of thin triangles around a shared corner, a triangle across it (overlapping some)
+    /// and one far off; every piece cut by vertical lines, so no part but the end ones has
+    /// only grid corners.
+    #[test]
+    fn separation_on_a_screen_is_separation_and_settles_cut_pieces_of_triangles_apart() {
+        use crate::exact::polygon::{Split, separated, separated_at_corners};
+        let gp = |x: i64, y: i64, z: i64| GridPoint { x, y, z };
+        let mut polys: Vec<Vec<GridPoint>> = (0..12)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 12.0;
+                let b = std::f64::consts::TAU * (k + 1) as f64 / 12.0;
+                let rim = |t: f64| gp((9e3 * t.cos()) as i64, (9e3 * t.sin()) as i64, 7);
+                vec![gp(0, 0, 5), rim(a), rim(b)]
+            })
+            .collect();
+        polys.push(vec![gp(-7000, -500, 3), gp(7000, -400, 3), gp(0, 900, 3)]);
+        polys.push(vec![gp(20000, 0, 2), gp(26000, 0, 2), gp(23000, 5000, 2)]);
+        let screen = screen_of_polygons(polys);
+        let mut parts = Vec::new();
+        for piece in initial_pieces(&screen) {
+            let mut rest = piece;
+            for x in [-4001, -1003, 997, 3999, 22001] {
+                let line = bsp::screen_line(0, x);
+                if let Split::Both(left, right) = rest.split_by_line(&line, Boundary::ScreenSplit) {
+                    parts.push(left);
+                    rest = right;
+                }
+            }
+            parts.push(rest);
+        }
+        let (mut by_faces, mut overlapping) = (0, 0);
+        for (i, p) in parts.iter().enumerate() {
+            for q in &parts[i + 1..] {
+                let apart = separated(p, q);
+                assert_eq!(separated_on(&screen, p, q), apart, "{} {}", p.poly, q.poly);
+                overlapping += usize::from(!apart);
+                let faces = screen.triangle_xy(p.poly).zip(screen.triangle_xy(q.poly));
+                by_faces += usize::from(
+                    separated_at_corners(p, q).is_none()
+                        && faces
+                            .is_some_and(|(a, b)| crate::exact::polygon::corners_separated(&a, &b)),
+                );
+            }
+        }
+        assert!(by_faces > 100, "{by_faces} pairs settled by their faces");
+        assert!(overlapping > 10, "{overlapping} overlapping pairs");
+    }
 
     #[test]
     fn pixel_ring_is_within_its_bound_at_the_grid_extremes_and_flips_y() {

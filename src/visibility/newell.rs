@@ -34,7 +34,7 @@ use super::coverage::{subtract, subtract_all, tie_key};
 use super::depth;
 use super::live::{Live, bounds, overlap};
 use super::visible_set::{Fragment, Stats, VisibleSet, put_counts};
-use super::{Strategy, initial_pieces};
+use super::{Strategy, initial_pieces, separated_on};
 use crate::exact::polygon::{Piece, Split, separated};
 use crate::exact::predicates::fallback_count;
 use crate::progress::{Report, Ticker};
@@ -286,7 +286,7 @@ fn first_hidden_by(
             st.settled_by[test] += 1;
             return false;
         }
-        if separated(&p.piece, &q.piece) {
+        if separated_on(screen, &p.piece, &q.piece) {
             st.settled_by[3] += 1;
             return false;
         }

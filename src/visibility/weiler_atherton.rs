@@ -28,8 +28,8 @@ use super::coverage::{clip_overlapping, nearest_first, split_by_depth};
 use super::live::{Live, bounds};
 use super::strips::Counters;
 use super::visible_set::{VisibleSet, put_counts};
-use super::{Strategy, opaque_then_layered};
-use crate::exact::polygon::{Piece, separated};
+use super::{Strategy, opaque_then_layered, separated_on};
+use crate::exact::polygon::Piece;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
 use std::sync::atomic::{AtomicBool, Ordering as AtomicOrdering};
@@ -335,7 +335,7 @@ fn resolve(
         for c_piece in &region {
             list.near_into(&bounds(c_piece), &mut near);
             for &v in &near {
-                if separated(list.get(v).expect("near is live"), c_piece) {
+                if separated_on(screen, list.get(v).expect("near is live"), c_piece) {
                     continue;
                 }
                 let p = list.take(v).expect("live");
