@@ -63,7 +63,7 @@ pub struct Region {
 
 /// The regions of `pieces` (disjoint), grouped by `key`: groups in key order, and within a
 /// group regions in the order of their outer rings' smallest vertex (y, then x).
-pub fn regions<K: Ord>(
+pub fn regions<K: Ord + Sync>(
     pieces: &[Piece],
     screen: &ScreenScene,
     key: impl Fn(&Piece) -> K,
@@ -74,7 +74,7 @@ pub fn regions<K: Ord>(
 
 /// [`regions`] of pieces whose [`shared_vertices`] are known, reporting stage "regions":
 /// pieces merged of all.
-pub fn regions_of<K: Ord>(
+pub fn regions_of<K: Ord + Sync>(
     pieces: &[Piece],
     vertices: &Vertices,
     screen: &ScreenScene,
@@ -87,14 +87,15 @@ pub fn regions_of<K: Ord>(
 /// [`regions_of`], each region made into what the caller keeps (`make`) as it is found: a list
 /// of regions beside the caller's list of what it makes of them was a drawing's peak (a
 /// million regions on a million triangles).
-pub fn regions_into<K: Ord, T>(
+pub fn regions_into<K: Ord + Sync, T: Send>(
     pieces: &[Piece],
     vertices: &Vertices,
     screen: &ScreenScene,
     key: impl Fn(&Piece) -> K,
     report: Option<Report>,
-    mut make: impl FnMut(Region) -> T,
+    make: impl Fn(Region) -> T + Sync,
 ) -> Vec<T> {
+    use rayon::prelude::*;
     let mut ticker = Ticker::new(report, "regions", pieces.len() as u64);
     let mut merged_pieces = 0;
     // The pieces in group order (key, then index): each group a run of them.
@@ -102,13 +103,7 @@ pub fn regions_into<K: Ord, T>(
     let mut order: Vec<usize> = (0..pieces.len()).collect();
     order.sort_by(|&a, &b| keys[a].cmp(&keys[b]).then(a.cmp(&b)));
     let face_of = |i: usize| screen.polys[pieces[i].poly as usize].id;
-    // At most a region per piece: room that is never touched is never resident, and the list
-    // never grows by copying itself.
-    let mut out = Vec::with_capacity(pieces.len());
-    for members in order.chunk_by(|&a, &b| keys[a] == keys[b]) {
-        // The pieces of the groups before this one are merged.
-        ticker.tick(merged_pieces);
-        merged_pieces += members.len() as u64;
+    let merge_into = |members: &[usize], out: &mut Vec<T>| {
         for m in merge(pieces, vertices, members) {
             let mut faces: SmallVec<[FaceId; 2]> = m.members.iter().map(|&i| face_of(i)).collect();
             faces.sort_unstable();
@@ -124,6 +119,40 @@ pub fn regions_into<K: Ord, T>(
                 rings: m.rings,
             }));
         }
+    };
+    // Groups are merged independently, on all cores: runs of groups of about `RUN` pieces, a
+    // wave of runs at a time, each wave's regions appended in group order (the same list as
+    // one thread makes). A wave's lists are all that exists twice.
+    const RUN: usize = 4096;
+    let mut runs: Vec<&[usize]> = Vec::new();
+    let mut rest: &[usize] = &order;
+    while !rest.is_empty() {
+        // The run ends where a group ends, at or past RUN pieces.
+        let mut end = RUN.min(rest.len());
+        while end < rest.len() && keys[rest[end]] == keys[rest[end - 1]] {
+            end += 1;
+        }
+        let (run, after) = rest.split_at(end);
+        runs.push(run);
+        rest = after;
+    }
+    // At most a region per piece: room that is never touched is never resident, and the list
+    // never grows by copying itself.
+    let mut out = Vec::with_capacity(pieces.len());
+    for wave in runs.chunks(4 * rayon::current_num_threads()) {
+        ticker.tick(merged_pieces);
+        merged_pieces += wave.iter().map(|r| r.len() as u64).sum::<u64>();
+        let made: Vec<Vec<T>> = wave
+            .par_iter()
+            .map(|run| {
+                let mut made = Vec::new();
+                for members in run.chunk_by(|&a, &b| keys[a] == keys[b]) {
+                    merge_into(members, &mut made);
+                }
+                made
+            })
+            .collect();
+        out.extend(made.into_iter().flatten());
     }
     ticker.finish();
     out.shrink_to_fit();
@@ -1429,6 +1458,63 @@ pub(super) mod tests {
             // So the three merge into one region, with a corner there.
             let corners = [[-10, 0], [10, 0], [10, 10], [0, 10], [0, 5], [-10, 5]];
             assert_eq!(rings(&pieces), region(&[&corners]));
+        }
+    }
+
+    /// Groups are merged on all cores in runs of about `RUN` pieces: the regions are each
+    /// group's merge in group order, whatever the threads, and a group larger than a run
+    /// (the left 60 columns of an 80 x 80 grid of squares: 4,800 pieces) stays one region.
+    #[test]
+    fn regions_merged_on_all_cores_are_each_groups_merge_in_group_order() {
+        let side = 80;
+        let squares: Vec<[[i64; 2]; 4]> = (0..side * side)
+            .map(|i| {
+                let (x, y) = (i % side, i / side);
+                [[x, y], [x + 1, y], [x + 1, y + 1], [x, y + 1]]
+            })
+            .collect();
+        let screen = crate::visibility::screen_of_polygons(
+            (squares.iter()).map(|s| s.iter().map(|&[x, y]| GridPoint { x, y, z: 0 }).collect()),
+        );
+        let pieces: Vec<Piece> = (squares.iter().enumerate())
+            .map(|(i, s)| grid_piece(i as u32, s))
+            .collect();
+        let vertices = shared_vertices(&pieces, &grid_samples());
+        // The rest of the columns in three groups by diagonals: squares meeting at corners.
+        let key = |p: &Piece| {
+            let (x, y) = (p.poly as i64 % side, p.poly as i64 / side);
+            if x < 60 { 0 } else { 1 + (x + y) % 3 }
+        };
+        let expected: Vec<super::Rings> = (0..4)
+            .flat_map(|k| {
+                let members: Vec<usize> = (0..pieces.len())
+                    .filter(|&i| key(&pieces[i]) == k)
+                    .collect();
+                merge(&pieces, &vertices, &members)
+                    .into_iter()
+                    .map(|m| m.rings)
+            })
+            .collect();
+        let left = merge(
+            &pieces,
+            &vertices,
+            &(0..pieces.len())
+                .filter(|&i| key(&pieces[i]) == 0)
+                .collect::<Vec<_>>(),
+        );
+        assert_eq!(left.len(), 1, "the left columns are one region");
+        assert!(expected.len() > 3, "{} regions", expected.len());
+        for threads in [1, 2, 7] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let got: Vec<super::Rings> = pool
+                .install(|| regions_of(&pieces, &vertices, &screen, key, None))
+                .into_iter()
+                .map(|r| r.rings)
+                .collect();
+            assert!(got == expected, "{threads} threads: other regions");
         }
     }
 }
