@@ -103,6 +103,7 @@ pub fn regions_into<K: Ord + Sync, T: Send>(
     let mut order: Vec<usize> = (0..pieces.len()).collect();
     order.sort_by(|&a, &b| keys[a].cmp(&keys[b]).then(a.cmp(&b)));
     let face_of = |i: usize| screen.polys[pieces[i].poly as usize].id;
+    let same_group = |a: usize, b: usize| keys[a] == keys[b];
     let merge_into = |members: &[usize], out: &mut Vec<T>| {
         for m in merge(pieces, vertices, members) {
             let mut faces: SmallVec<[FaceId; 2]> = m.members.iter().map(|&i| face_of(i)).collect();
@@ -129,7 +130,7 @@ pub fn regions_into<K: Ord + Sync, T: Send>(
     while !rest.is_empty() {
         // The run ends where a group ends, at or past RUN pieces.
         let mut end = RUN.min(rest.len());
-        while end < rest.len() && keys[rest[end]] == keys[rest[end - 1]] {
+        while end < rest.len() && same_group(rest[end], rest[end - 1]) {
             end += 1;
         }
         let (run, after) = rest.split_at(end);
@@ -146,7 +147,7 @@ pub fn regions_into<K: Ord + Sync, T: Send>(
             .par_iter()
             .map(|run| {
                 let mut made = Vec::new();
-                for members in run.chunk_by(|&a, &b| keys[a] == keys[b]) {
+                for members in run.chunk_by(|&a, &b| same_group(a, b)) {
                     merge_into(members, &mut made);
                 }
                 made
@@ -1485,24 +1486,17 @@ pub(super) mod tests {
             let (x, y) = (p.poly as i64 % side, p.poly as i64 / side);
             if x < 60 { 0 } else { 1 + (x + y) % 3 }
         };
-        let expected: Vec<super::Rings> = (0..4)
-            .flat_map(|k| {
+        let by_group: Vec<Vec<Merged>> = (0..4)
+            .map(|k| {
                 let members: Vec<usize> = (0..pieces.len())
                     .filter(|&i| key(&pieces[i]) == k)
                     .collect();
                 merge(&pieces, &vertices, &members)
-                    .into_iter()
-                    .map(|m| m.rings)
             })
             .collect();
-        let left = merge(
-            &pieces,
-            &vertices,
-            &(0..pieces.len())
-                .filter(|&i| key(&pieces[i]) == 0)
-                .collect::<Vec<_>>(),
-        );
-        assert_eq!(left.len(), 1, "the left columns are one region");
+        assert_eq!(by_group[0].len(), 1, "the left columns are one region");
+        let expected: Vec<super::Rings> =
+            (by_group.into_iter().flatten()).map(|m| m.rings).collect();
         assert!(expected.len() > 3, "{} regions", expected.len());
         for threads in [1, 2, 7] {
             let pool = rayon::ThreadPoolBuilder::new()
