@@ -19,39 +19,53 @@ pub(crate) fn joined(a: [f64; 4], b: &[f64; 4]) -> [f64; 4] {
 pub(crate) struct BoxGrid {
     origin: [f64; 2],
     cell: [f64; 2],
-    cells: usize,
+    /// Columns and rows.
+    cols: usize,
+    rows: usize,
     buckets: Vec<Vec<u32>>,
 }
 
+/// The most cells a grid has (the buckets' own room is 24 bytes a cell).
+const MOST_CELLS: usize = 512 * 512;
+
 impl BoxGrid {
-    /// An empty grid of about `count` cells over the union of `boxes` (at most 512 x 512 cells,
-    /// at least one grid unit wide).
+    /// An empty grid of about `count` cells over the union of `boxes` (at most [`MOST_CELLS`],
+    /// each at least one grid unit wide), as near square as the union allows: a box then lies in
+    /// about as many columns as rows. Square counts of columns and rows made a screen strip's
+    /// cells 32 times taller than wide (the strip is), so that each piece was listed in a row of
+    /// a dozen cells and every query visited them.
     pub fn over<'b>(boxes: impl IntoIterator<Item = &'b [f64; 4]>, count: usize) -> BoxGrid {
         let mut all = boxes.into_iter().fold(NO_BOX, joined);
         if all[0] > all[2] {
             all = [0.0, 0.0, 1.0, 1.0];
         }
-        let cells = ((count as f64).sqrt() as usize).clamp(1, 512);
+        let (width, height) = ((all[2] - all[0]).max(1.0), (all[3] - all[1]).max(1.0));
+        let cells = count.clamp(1, MOST_CELLS) as f64;
+        // Square cells of side s: (width / s) · (height / s) = cells.
+        let side = (width * height / cells).sqrt();
+        let cols = ((width / side).round() as usize).clamp(1, MOST_CELLS);
+        let rows = ((cells / cols as f64).round() as usize).clamp(1, MOST_CELLS / cols);
         BoxGrid {
             origin: [all[0], all[1]],
             cell: [
-                ((all[2] - all[0]) / cells as f64).max(1.0),
-                ((all[3] - all[1]) / cells as f64).max(1.0),
+                (width / cols as f64).max(1.0),
+                (height / rows as f64).max(1.0),
             ],
-            cells,
-            buckets: vec![Vec::new(); cells * cells],
+            cols,
+            rows,
+            buckets: vec![Vec::new(); cols * rows],
         }
     }
 
     /// The cells (column range, row range) a box covers, clamped to the grid.
     fn range(&self, b: &[f64; 4]) -> (usize, usize, usize, usize) {
         let c =
-            |v: f64, o: f64, s: f64| (((v - o) / s).floor().max(0.0) as usize).min(self.cells - 1);
+            |v: f64, o: f64, s: f64, n: usize| (((v - o) / s).floor().max(0.0) as usize).min(n - 1);
         (
-            c(b[0], self.origin[0], self.cell[0]),
-            c(b[2], self.origin[0], self.cell[0]),
-            c(b[1], self.origin[1], self.cell[1]),
-            c(b[3], self.origin[1], self.cell[1]),
+            c(b[0], self.origin[0], self.cell[0], self.cols),
+            c(b[2], self.origin[0], self.cell[0], self.cols),
+            c(b[1], self.origin[1], self.cell[1], self.rows),
+            c(b[3], self.origin[1], self.cell[1], self.rows),
         )
     }
 
@@ -78,7 +92,7 @@ impl BoxGrid {
         let (i0, i1, j0, j1) = self.range(b);
         for j in j0..=j1 {
             for i in i0..=i1 {
-                self.buckets[j * self.cells + i].push(index);
+                self.buckets[j * self.cols + i].push(index);
             }
         }
     }
@@ -87,8 +101,8 @@ impl BoxGrid {
     /// once).
     pub fn visit_all(&self, b: &[f64; 4], mut f: impl FnMut(u32)) {
         let (i0, i1, j0, j1) = self.range(b);
-        let rows = &self.buckets[j0 * self.cells..(j1 + 1) * self.cells];
-        for row in rows.chunks_exact(self.cells) {
+        let rows = &self.buckets[j0 * self.cols..(j1 + 1) * self.cols];
+        for row in rows.chunks_exact(self.cols) {
             row[i0..=i1].iter().flatten().for_each(|&v| f(v));
         }
     }
@@ -113,11 +127,11 @@ impl BoxGrid {
         mut f: impl FnMut(u32, &[f64; 4]),
     ) {
         let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
-        // At most 512 cells a side: at most about a thousand steps.
+        // A step per cell crossed, along the longer axis: at most as many as columns and rows.
         let steps = ((dx.abs() / self.cell[0])
             .max(dy.abs() / self.cell[1])
             .ceil() as usize)
-            .clamp(1, 2 * self.cells + 1);
+            .clamp(1, self.cols + self.rows + 1);
         let mut from = p;
         for s in 1..=steps {
             let to = if s == steps {
@@ -143,7 +157,7 @@ impl BoxGrid {
         let (i0, i1, j0, j1) = self.range(b);
         for j in j0..=j1 {
             for i in i0..=i1 {
-                let bucket = &mut self.buckets[j * self.cells + i];
+                let bucket = &mut self.buckets[j * self.cols + i];
                 bucket.retain(|&v| keep(v));
                 bucket.iter().for_each(|&v| f(v));
             }
@@ -268,6 +282,34 @@ pub(crate) fn box_of(points: &[[f64; 2]]) -> [f64; 4] {
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    /// A tall narrow union (a screen strip) gets tall narrow columns of square cells: a small
+    /// box lies in a couple of cells, not in a row of many thin ones.
+    #[test]
+    fn cells_are_square_whatever_the_unions_shape() {
+        for (width, height) in [(100.0, 3200.0), (3200.0, 100.0), (640.0, 640.0)] {
+            let boxes: Vec<[f64; 4]> = (0..1024)
+                .map(|k| {
+                    let (x, y) = (
+                        (k % 32) as f64 * width / 32.0,
+                        (k / 32) as f64 * height / 32.0,
+                    );
+                    [x, y, x + 1.0, y + 1.0]
+                })
+                .chain([[0.0, 0.0, width, height]])
+                .collect();
+            let grid = BoxGrid::over(&boxes, boxes.len());
+            let (cell_w, cell_h) = (grid.cell[0], grid.cell[1]);
+            assert!(
+                cell_w <= 1.5 * cell_h && cell_h <= 1.5 * cell_w,
+                "{width} x {height}: cells {cell_w} x {cell_h}"
+            );
+            assert!((900..=1200).contains(&(grid.cols * grid.rows)));
+            // A box the size of a cell lies in at most four.
+            let side = cell_w.max(cell_h);
+            assert!(grid.cells_of(&[side * 0.5, side * 0.5, side * 1.5, side * 1.5]) <= 4);
+        }
+    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(300))]
