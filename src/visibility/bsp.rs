@@ -49,6 +49,9 @@ pub struct BspStats {
     pub pair_tests: usize,
     /// Visible pieces after the coverage pass.
     pub visible_pieces: usize,
+    /// Pieces the coverage pass proved hidden whole, uncut
+    /// ([`super::coverage::CoverageStats::covered`]).
+    pub covered: usize,
 }
 
 impl BspStats {
@@ -71,6 +74,7 @@ impl Counters for BspStats {
         self.depth = self.depth.max(o.depth);
         self.pair_tests += o.pair_tests;
         self.visible_pieces += o.visible_pieces;
+        self.covered += o.covered;
     }
 }
 
@@ -701,7 +705,9 @@ impl Bsp {
     /// The exact visible set: pieces front to back, each minus the visible pieces in front.
     pub fn visible_set(self, screen: &ScreenScene) -> (VisibleSet, BspStats) {
         let mut stats = self.stats.clone();
-        let pieces = self.into_coverage(screen).into_pieces();
+        let coverage = self.into_coverage(screen);
+        stats.covered = coverage.stats.covered;
+        let pieces = coverage.into_pieces();
         stats.visible_pieces = pieces.len();
         (VisibleSet::of_pieces(pieces), stats)
     }

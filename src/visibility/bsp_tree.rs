@@ -40,7 +40,9 @@ impl Strategy for BspTree {
         let (visible, st) = solve_strips(strips.cut(opaque), report, |strip, report| {
             let bsp = Bsp::build_from(screen, strip, report);
             let mut st = bsp.stats.clone();
-            let visible = bsp.into_coverage(screen).into_pieces();
+            let coverage = bsp.into_coverage(screen);
+            st.covered = coverage.stats.covered;
+            let visible = coverage.into_pieces();
             st.visible_pieces = visible.len();
             Ok((visible, st))
         })
@@ -57,6 +59,7 @@ impl Strategy for BspTree {
             stats.insert(k.to_string(), v);
         };
         put("occluded", occluded.into());
+        put("covered", st.covered.into());
         put("strips", strip_count.into());
         put(
             "translucent_painter_order",

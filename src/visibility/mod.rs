@@ -24,6 +24,7 @@ pub mod bsp;
 pub mod bsp_tree;
 pub mod coverage;
 pub mod coverage_map;
+mod covered;
 pub mod depth;
 pub(crate) mod grid;
 pub(crate) mod live;
@@ -192,12 +193,41 @@ fn pieces_of_polygon(screen: &ScreenScene, poly: u32) -> SmallVec<[Piece; 1]> {
 /// Pieces cut off the grid (by strips, splits, front pieces) mostly meet their mesh neighbours'
 /// pieces that way.
 pub(crate) fn separated_on(screen: &ScreenScene, p: &Piece, q: &Piece) -> bool {
-    use crate::exact::polygon::{corners_separated, separated_at_corners, separated_by_lines};
-    if let Some(apart) = separated_at_corners(p, q) {
-        return apart;
+    Outline::of(p).separated_from(screen, q)
+}
+
+/// What [`separated_on`] reads of one piece, found once for a piece tested against many: its
+/// grid corners (an uncut face), and its face's triangle.
+pub(crate) struct Outline<'p> {
+    piece: &'p Piece,
+    corners: Option<smallvec::SmallVec<[[i64; 2]; 6]>>,
+    /// Found when first needed.
+    triangle: std::cell::OnceCell<Option<[[i64; 2]; 3]>>,
+}
+
+impl<'p> Outline<'p> {
+    pub(crate) fn of(piece: &'p Piece) -> Self {
+        Outline {
+            piece,
+            corners: piece.grid_corners(),
+            triangle: std::cell::OnceCell::new(),
+        }
     }
-    let faces = screen.triangle_xy(p.poly).zip(screen.triangle_xy(q.poly));
-    faces.is_some_and(|(a, b)| corners_separated(&a, &b)) || separated_by_lines(p, q)
+
+    /// [`separated_on`] of the piece and `q`.
+    pub(crate) fn separated_from(&self, screen: &ScreenScene, q: &Piece) -> bool {
+        use crate::exact::polygon::{corners_separated, separated_by_lines};
+        if let Some(a) = &self.corners
+            && let Some(b) = q.grid_corners()
+        {
+            return corners_separated(a, &b);
+        }
+        let own = *self
+            .triangle
+            .get_or_init(|| screen.triangle_xy(self.piece.poly));
+        let faces = own.zip(screen.triangle_xy(q.poly));
+        faces.is_some_and(|(a, b)| corners_separated(&a, &b)) || separated_by_lines(self.piece, q)
+    }
 }
 
 /// A grid polygon as a pixel ring (y down, the last point not repeated). Output rounding:
