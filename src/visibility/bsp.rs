@@ -19,11 +19,13 @@
 //! exact strategy for the back-to-front order of translucent faces.
 
 use super::coverage::{Coverage, bounds, tie_key};
+use super::covered::{CoverTries, covered};
 use super::depth;
-use super::grid::{NO_BOX, joined};
+use super::grid::{BoxGrid, NO_BOX, joined};
+use super::live::overlap;
 use super::strips::Counters;
 use super::visible_set::{Fragment, Stats, VisibleSet};
-use super::{initial_pieces, separated_on};
+use super::{Outline, initial_pieces, separated_on};
 use crate::exact::Plane;
 use crate::exact::polygon::{Boundary, Piece, Split, corners_separated, separated_by_lines};
 use crate::exact::predicates::Line;
@@ -49,8 +51,9 @@ pub struct BspStats {
     pub pair_tests: usize,
     /// Visible pieces after the coverage pass.
     pub visible_pieces: usize,
-    /// Pieces the coverage pass proved hidden whole, uncut
-    /// ([`super::coverage::CoverageStats::covered`]).
+    /// Pieces proven hidden whole, uncut ([`super::covered`]): under a front layer while the
+    /// tree is built, or by the coverage pass
+    /// ([`super::coverage::CoverageStats::covers`]).
     pub covered: usize,
 }
 
@@ -388,6 +391,39 @@ fn front_layer(
     })
 }
 
+/// Which pieces of the rest of a front layer (those not [`OPEN`] in `blockers`) lie wholly
+/// under the layer's pieces ([`covered`]), of those `tries` says are worth trying. The layer's
+/// pieces have disjoint interiors on screen, and none can be hidden by a piece of the list:
+/// wherever a piece of the rest overlaps one, it lies behind it. So a piece of the rest within
+/// their union is hidden.
+fn under_layer(
+    screen: &ScreenScene,
+    list: &[Piece],
+    boxes: &[[f64; 4]],
+    blockers: &[u32],
+    tries: &mut CoverTries,
+) -> Vec<bool> {
+    let layer: Vec<usize> = (0..list.len()).filter(|&k| blockers[k] == OPEN).collect();
+    let grid = BoxGrid::holding(&layer.iter().map(|&k| boxes[k]).collect::<Vec<_>>());
+    let mut near = Vec::new();
+    (0..list.len())
+        .map(|k| {
+            if blockers[k] == OPEN || !tries.worth_trying() {
+                return false;
+            }
+            grid.entries_near(&boxes[k], &mut near);
+            let outline = Outline::of(&list[k]);
+            let fronts: Vec<&Piece> = (near.iter())
+                .map(|&e| layer[e as usize])
+                .filter(|&j| overlap(&boxes[j], &boxes[k]))
+                .map(|j| &list[j])
+                .filter(|front| !outline.separated_from(screen, front))
+                .collect();
+            !fronts.is_empty() && tries.record(covered(&list[k], &fronts))
+        })
+        .collect()
+}
+
 /// What a node does with its pieces.
 enum Plan {
     /// Nothing can hide anything else: the pieces stay together.
@@ -513,6 +549,8 @@ impl Bsp {
             ..BspStats::default()
         };
         let mut nodes: Vec<Node> = Vec::new();
+        // Tries of the rest of a front layer against it, on this tree's pieces.
+        let mut covers = CoverTries::default();
         if pieces.is_empty() {
             ticker.finish();
             return Bsp { nodes, stats };
@@ -545,22 +583,28 @@ impl Bsp {
                 // The front layer first, the rest behind it: no plane, no split. A piece of the
                 // rest stays settled while the piece that may hide it is in the rest too.
                 Plan::Layer(blockers) => {
+                    // The rest's pieces wholly under the layer are hidden: they leave the tree.
+                    let hidden = under_layer(screen, &list, &boxes, &blockers, &mut covers);
+                    let kept = |k: usize| blockers[k] != OPEN && !hidden[k];
                     let mut index_in_rest = vec![OPEN; n];
                     let mut rest_count = 0;
-                    for (k, &b) in blockers.iter().enumerate() {
-                        if b != OPEN {
-                            index_in_rest[k] = rest_count;
-                            rest_count += 1;
+                    for k in (0..n).filter(|&k| kept(k)) {
+                        index_in_rest[k] = rest_count;
+                        rest_count += 1;
+                    }
+                    // A piece whose blocker left is open again.
+                    rest_blockers = (0..n)
+                        .filter(|&k| kept(k))
+                        .map(|k| index_in_rest[blockers[k] as usize])
+                        .collect();
+                    let (mut on, mut rest) = (Vec::new(), Vec::with_capacity(rest_count as usize));
+                    for (k, p) in list.into_iter().enumerate() {
+                        if blockers[k] == OPEN {
+                            on.push(p);
+                        } else if !hidden[k] {
+                            rest.push(p);
                         }
                     }
-                    rest_blockers = blockers
-                        .iter()
-                        .filter(|&&b| b != OPEN)
-                        .map(|&b| index_in_rest[b as usize])
-                        .collect();
-                    let mut flags = blockers.iter();
-                    let (on, rest): (Vec<Piece>, Vec<Piece>) =
-                        list.into_iter().partition(|_| flags.next() == Some(&OPEN));
                     (Vec::new(), on, rest)
                 }
                 Plan::Split(best) => {
@@ -619,6 +663,7 @@ impl Bsp {
         }
         ticker.finish();
         stats.nodes = nodes.len();
+        stats.covered = covers.hits;
         Bsp { nodes, stats }
     }
 
@@ -706,7 +751,7 @@ impl Bsp {
     pub fn visible_set(self, screen: &ScreenScene) -> (VisibleSet, BspStats) {
         let mut stats = self.stats.clone();
         let coverage = self.into_coverage(screen);
-        stats.covered = coverage.stats.covered;
+        stats.covered += coverage.stats.covers.hits;
         let pieces = coverage.into_pieces();
         stats.visible_pieces = pieces.len();
         (VisibleSet::of_pieces(pieces), stats)
@@ -766,20 +811,60 @@ mod tests {
         screen_of_polygons(faces.into_iter().map(Vec::from))
     }
 
-    /// The faces of a convex body go in two layers, the front faces then the faces they hide,
-    /// with no split: no support plane of a convex body separates its faces, and screen lines
-    /// would cut them.
+    /// The faces of a convex body: the front faces are one layer, with no split (no support
+    /// plane of a convex body separates its faces, and screen lines would cut them), and the
+    /// faces behind lie wholly under it ([`under_layer`]): they leave the tree uncut.
     #[test]
-    fn a_convex_bodys_faces_are_two_layers_without_a_split() {
+    fn a_convex_bodys_front_faces_are_a_layer_and_the_faces_behind_leave_uncut() {
         let screen = parallelepiped();
         let bsp = Bsp::build(&screen);
-        assert_eq!((bsp.stats.pieces, bsp.stats.fragments), (6, 6));
-        assert_eq!((bsp.stats.nodes, bsp.stats.depth), (2, 2));
+        assert_eq!((bsp.stats.pieces, bsp.stats.fragments), (6, 3));
+        assert_eq!(bsp.stats.covered, 3);
+        assert_eq!((bsp.stats.nodes, bsp.stats.depth), (1, 1));
         let (visible, _) = bsp.visible_set(&screen);
         let mut polys: Vec<u32> = visible.pieces.iter().map(|p| p.poly).collect();
         polys.sort();
         polys.dedup();
         assert_eq!(polys.len(), 3, "the three front faces, whole: {polys:?}");
+    }
+
+    /// A face behind a layer that covers it only in part (a hole in the layer above it) stays
+    /// in the tree and shows through the hole; one under the whole layer leaves.
+    #[test]
+    fn a_face_behind_a_hole_in_the_layer_stays_in_the_tree() {
+        // A 4 x 4 sheet of squares at depth 100 less the square at (1, 1); behind it at depth
+        // 200, a small square under the hole and one under the sheet's last square.
+        let mut faces: Vec<Vec<GridPoint>> = Vec::new();
+        for j in 0..4 {
+            for i in (0..4).filter(|&i| (i, j) != (1, 1)) {
+                let (x, y) = (100 * i, 100 * j);
+                faces.push(
+                    [[x, y], [x + 100, y], [x + 100, y + 100], [x, y + 100]]
+                        .map(|[x, y]| point([x, y, 100]))
+                        .to_vec(),
+                );
+            }
+        }
+        for (x, y) in [(120, 120), (320, 320)] {
+            faces.push(
+                [[x, y], [x + 60, y], [x + 60, y + 60], [x, y + 60]]
+                    .map(|[x, y]| point([x - 40, y - 40, 200]))
+                    .to_vec(),
+            );
+        }
+        let screen = screen_of_polygons(faces);
+        let bsp = Bsp::build(&screen);
+        assert_eq!(
+            bsp.stats.covered, 1,
+            "the square under the sheet's corner square"
+        );
+        let (visible, _) = bsp.visible_set(&screen);
+        let behind: Vec<&Piece> = visible.pieces.iter().filter(|p| p.poly == 15).collect();
+        assert!(
+            !behind.is_empty(),
+            "the square under the hole shows through it"
+        );
+        assert!(visible.pieces.iter().all(|p| p.poly != 16));
     }
 
     /// The corners' separation test is the lines' one, touching and shared corners included.
@@ -860,8 +945,8 @@ mod tests {
     /// A cone seen from its apex: 256 slivers whose screen boxes all meet at the apex, every
     /// pair apart on screen by the corners they share, and the base behind them. The slivers
     /// are the front layer, found in one pass testing each pair once: only the base may be
-    /// hidden, so it is no crowd. (Counting every box pair against the crowd budget gave up
-    /// a quarter of the way, then tested them all again.)
+    /// hidden, so it is no crowd, and it lies wholly under them. (Counting every box pair
+    /// against the crowd budget gave up a quarter of the way, then tested them all again.)
     #[test]
     fn slivers_whose_boxes_all_overlap_are_a_layer_not_a_crowd() {
         let n = 256;
@@ -883,8 +968,10 @@ mod tests {
         faces.push(rim.iter().rev().copied().collect());
         let screen = screen_of_polygons(faces);
         let bsp = Bsp::build(&screen);
-        assert_eq!((bsp.stats.pieces, bsp.stats.fragments), (n + 1, n + 1));
-        assert_eq!((bsp.stats.nodes, bsp.stats.depth), (2, 2));
+        // The base lies wholly under the slivers: it leaves the tree.
+        assert_eq!((bsp.stats.pieces, bsp.stats.fragments), (n + 1, n));
+        assert_eq!(bsp.stats.covered, 1);
+        assert_eq!((bsp.stats.nodes, bsp.stats.depth), (1, 1));
         assert_eq!(bsp.stats.pair_tests, (n + 1) * n / 2, "every pair once");
     }
 

@@ -41,7 +41,7 @@ impl Strategy for BspTree {
             let bsp = Bsp::build_from(screen, strip, report);
             let mut st = bsp.stats.clone();
             let coverage = bsp.into_coverage(screen);
-            st.covered = coverage.stats.covered;
+            st.covered += coverage.stats.covers.hits;
             let visible = coverage.into_pieces();
             st.visible_pieces = visible.len();
             Ok((visible, st))

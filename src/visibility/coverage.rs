@@ -19,7 +19,7 @@
 //! Pieces are bucketed on a uniform screen grid so that a new piece meets only the visible
 //! pieces whose bounds overlap its own; the bounds are a filter, every decision is exact.
 
-use super::covered::covered;
+use super::covered::{CoverTries, covered};
 pub(crate) use super::live::bounds;
 use super::live::{Live, overlap};
 use super::occlusion::{CELLS_PER_PIECE, Occlusion};
@@ -62,13 +62,9 @@ pub struct CoverageStats {
     pub plane_splits: usize,
     /// Pieces proven hidden by the occlusion cells before any cut.
     pub occluded: usize,
-    /// Pieces proven hidden whole under the visible pieces in front of them, before any cut
-    /// ([`covered`]).
-    pub covered: usize,
-    /// Pieces tried whole that way ([`Coverage::tries_covers`]).
-    pub cover_tries: usize,
-    /// Pieces that might have been tried whole but were not (the tries were not paying).
-    pub cover_skips: usize,
+    /// Pieces tried whole against the visible pieces in front of them, before any cut, and
+    /// those proven hidden so ([`covered`]).
+    pub covers: CoverTries,
 }
 
 impl CoverageStats {
@@ -87,9 +83,7 @@ impl Counters for CoverageStats {
         self.overlap_tests += o.overlap_tests;
         self.plane_splits += o.plane_splits;
         self.occluded += o.occluded;
-        self.covered += o.covered;
-        self.cover_tries += o.cover_tries;
-        self.cover_skips += o.cover_skips;
+        self.covers.add(&o.covers);
     }
 }
 
@@ -208,7 +202,7 @@ impl<'a> Coverage<'a> {
     ///
     /// `in_front`: the live pieces lie in front of `piece` wherever they overlap it, so that it
     /// keeps nothing where they cover it. Then a piece that meets some may first be tried whole
-    /// against them ([`covered`], while it pays: [`Coverage::tries_covers`]): most such pieces
+    /// against them ([`covered`], while it pays: [`CoverTries`]): most such pieces
     /// in a surface's shadow are hidden, and are dropped uncut.
     fn clipped_by_near(
         &mut self,
@@ -219,7 +213,7 @@ impl<'a> Coverage<'a> {
         let mut near = self.visible.near(&bounds(&piece));
         // Tried whole, the pieces that meet it are found first (a part lies in the piece, so no
         // other meets a part), and the first of them is known to meet it.
-        let try_whole = in_front && !near.is_empty() && self.tries_covers();
+        let try_whole = in_front && !near.is_empty() && self.stats.covers.worth_trying();
         if try_whole {
             let outline = Outline::of(&piece);
             let live = &self.visible;
@@ -229,9 +223,7 @@ impl<'a> Coverage<'a> {
                 return vec![piece];
             }
             let fronts: Vec<&Piece> = (near.iter()).map(|&v| live.get(v).expect("live")).collect();
-            self.stats.cover_tries += 1;
-            if covered(&piece, &fronts) {
-                self.stats.covered += 1;
+            if self.stats.covers.record(covered(&piece, &fronts)) {
                 return Vec::new();
             }
         }
@@ -261,22 +253,6 @@ impl<'a> Coverage<'a> {
             }
         }
         parts
-    }
-
-    /// Is trying a piece whole against the pieces in front ([`covered`]) worth it here? Always
-    /// for the first tries; then while at least half of the tries prove a piece covered (a
-    /// surface in front of others: dragon 88 %, the 1M sphere 99 %), else one candidate in
-    /// sixteen, so that the rate can recover. Soups of crossing faces are proven covered a
-    /// third of the time, and the pieces that meet a front found first cost them more than the
-    /// proofs save. The choice only decides how the same parts are found.
-    fn tries_covers(&mut self) -> bool {
-        const FIRST_TRIES: usize = 64;
-        let s = &mut self.stats;
-        if s.cover_tries < FIRST_TRIES || 2 * s.covered >= s.cover_tries {
-            return true;
-        }
-        s.cover_skips += 1;
-        s.cover_skips.is_multiple_of(16)
     }
 
     /// Is `piece` proven hidden before any cut ([`Occlusion`])? Counts what it hides.

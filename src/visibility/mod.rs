@@ -24,7 +24,7 @@ pub mod bsp;
 pub mod bsp_tree;
 pub mod coverage;
 pub mod coverage_map;
-mod covered;
+pub(crate) mod covered;
 pub mod depth;
 pub(crate) mod grid;
 pub(crate) mod live;
