@@ -405,20 +405,27 @@ fn under_layer(
 ) -> Vec<bool> {
     let layer: Vec<usize> = (0..list.len()).filter(|&k| blockers[k] == OPEN).collect();
     let grid = BoxGrid::holding(&layer.iter().map(|&k| boxes[k]).collect::<Vec<_>>());
-    let mut near = Vec::new();
+    // Per layer piece, the last piece of the rest that met it (a box lies in several cells):
+    // `covered` takes the fronts in any order, so they need no sort.
+    let mut seen = vec![usize::MAX; layer.len()];
+    let mut fronts: Vec<&Piece> = Vec::new();
     (0..list.len())
         .map(|k| {
             if blockers[k] == OPEN || !tries.worth_trying() {
                 return false;
             }
-            grid.entries_near(&boxes[k], &mut near);
             let outline = Outline::of(&list[k]);
-            let fronts: Vec<&Piece> = (near.iter())
-                .map(|&e| layer[e as usize])
-                .filter(|&j| overlap(&boxes[j], &boxes[k]))
-                .map(|j| &list[j])
-                .filter(|front| !outline.separated_from(screen, front))
-                .collect();
+            fronts.clear();
+            grid.visit_all(&boxes[k], |e| {
+                let (e, j) = (e as usize, layer[e as usize]);
+                if seen[e] != k
+                    && overlap(&boxes[j], &boxes[k])
+                    && !outline.separated_from(screen, &list[j])
+                {
+                    fronts.push(&list[j]);
+                }
+                seen[e] = k;
+            });
             !fronts.is_empty() && tries.record(covered(&list[k], &fronts))
         })
         .collect()
