@@ -217,8 +217,8 @@ impl<'a> Coverage<'a> {
         if try_whole {
             let outline = Outline::of(&piece);
             let live = &self.visible;
-            near.retain(|&v| !outline.separated_from(self.screen, live.get(v).expect("live")));
             self.stats.overlap_tests += near.len();
+            near.retain(|&v| !outline.separated_from(self.screen, live.get(v).expect("live")));
             if near.is_empty() {
                 return vec![piece];
             }
