@@ -396,6 +396,7 @@ fn by_map(
             ("overlap_tests", cs.overlap_tests),
             ("replaced", cs.replaced),
             ("plane_splits", cs.plane_splits),
+            ("covered", cs.covers.hits),
             ("strips", strip_count),
         ],
     );

@@ -20,7 +20,7 @@
 
 use super::coverage::{Coverage, bounds, tie_key};
 use super::covered::{CoverTries, covered};
-use super::depth;
+use super::depth::{self, cannot_hide};
 use super::grid::{BoxGrid, NO_BOX, joined};
 use super::live::overlap;
 use super::strips::Counters;
@@ -236,14 +236,6 @@ const LAYER_PAIRS_PER_PIECE: usize = 32;
 /// A front layer with fewer than one piece in this many is thin: the node takes a splitter
 /// instead (shingles overlapping in a chain would otherwise be peeled one per level).
 const THIN_LAYER: usize = 32;
-
-/// Can `p` hide no part of `of`? Proven when `p` is wholly deeper (its proven depth range,
-/// [`depth::range`], beyond `of`'s), or wholly in the closed half-space behind `of`'s support
-/// plane and not in the plane: along every ray through both, `p`'s point is then at least as
-/// deep, and as deep only on a line.
-fn cannot_hide(p: (&Piece, [f64; 2]), of: (&Piece, [f64; 2])) -> bool {
-    p.1[0] > of.1[1] || p.0.sides_of_plane(&of.0.support) == (false, true)
-}
 
 /// A piece whose place the layer search decides at its node; otherwise a piece's entry is the
 /// index, in its node's list, of a piece that may hide part of it (found by the parent's search;

@@ -20,6 +20,7 @@
 //! pieces whose bounds overlap its own; the bounds are a filter, every decision is exact.
 
 use super::covered::{CoverTries, covered};
+use super::depth::{self, cannot_hide};
 pub(crate) use super::live::bounds;
 use super::live::{Live, overlap};
 use super::occlusion::{CELLS_PER_PIECE, Occlusion};
@@ -270,6 +271,15 @@ impl<'a> Coverage<'a> {
         }
         let b = bounds(&piece);
         let mut queue = self.visible.near(&b);
+        if !queue.is_empty() && self.stats.covers.worth_trying() {
+            // The near pieces apart from the piece are apart from every part of it: only those
+            // that meet it stay in the queue.
+            let meeting = self.meeting(&piece, &queue);
+            if self.under_all(&piece, &meeting) {
+                return;
+            }
+            queue = meeting;
+        }
         // Each part with its bounds, computed once: they cost crossings.
         let mut parts = vec![(piece, b)];
         let mut resolved = Vec::new();
@@ -331,6 +341,37 @@ impl<'a> Coverage<'a> {
         for (part, b) in parts {
             self.visible.add(part, b);
         }
+    }
+
+    /// The live pieces of `near` whose interiors meet `piece`'s, in order.
+    fn meeting(&mut self, piece: &Piece, near: &[u32]) -> Vec<u32> {
+        let (screen, live) = (self.screen, &self.visible);
+        let outline = Outline::of(piece);
+        self.stats.overlap_tests += near.len();
+        (near.iter().copied())
+            .filter(|&v| !outline.separated_from(screen, live.get(v).expect("live")))
+            .collect()
+    }
+
+    /// Is `piece` proven hidden whole, before any cut, by the live pieces `meeting` it (all
+    /// of them)? When each lies in front of it there (it can hide no part of them:
+    /// [`cannot_hide`]) and it lies within their union ([`covered`]). Inserted in any order,
+    /// most pieces that meet visible ones still come after what hides them (the coverage
+    /// strategy inserts the nearest first). Counted in [`CoverTries`].
+    fn under_all(&mut self, piece: &Piece, meeting: &[u32]) -> bool {
+        if meeting.is_empty() {
+            return false;
+        }
+        let (screen, live) = (self.screen, &self.visible);
+        let fronts: Vec<&Piece> = (meeting.iter())
+            .map(|&v| live.get(v).expect("live"))
+            .collect();
+        let depth = depth::range(screen, piece);
+        let behind_all = (fronts.iter())
+            .all(|front| cannot_hide((piece, depth), (front, depth::range(screen, front))));
+        self.stats
+            .covers
+            .record(behind_all && covered(piece, &fronts))
     }
 }
 

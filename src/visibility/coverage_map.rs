@@ -59,6 +59,7 @@ impl Strategy for CoverageMap {
             put("replaced", cs.replaced.into());
             put("overlap_tests", cs.overlap_tests.into());
             put("occluded", cs.occluded.into());
+            put("covered", cs.covers.hits.into());
             put("strips", strips.into());
             (visible, Vec::new())
         };

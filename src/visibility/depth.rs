@@ -56,6 +56,14 @@ fn corner_range(screen: &ScreenScene, p: &Piece) -> [f64; 2] {
     [lo as f64, hi as f64]
 }
 
+/// Can `p` hide no part of `of`? Proven when `p` is wholly deeper (its proven depth range,
+/// [`range`], beyond `of`'s), or wholly in the closed half-space behind `of`'s support plane
+/// and not in the plane: along every ray through both, `p`'s point is then at least as deep,
+/// and as deep only on a line. Each piece comes with its `range`.
+pub(crate) fn cannot_hide(p: (&Piece, [f64; 2]), of: (&Piece, [f64; 2])) -> bool {
+    p.1[0] > of.1[1] || p.0.sides_of_plane(&of.0.support) == (false, true)
+}
+
 /// The depth range [near, far] that certainly contains the piece: each vertex's depth with its
 /// bound (the vertex's own error included), within the polygon's corner range.
 pub fn range(screen: &ScreenScene, p: &Piece) -> [f64; 2] {
