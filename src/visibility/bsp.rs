@@ -748,12 +748,19 @@ impl Bsp {
 
     /// The exact visible set: pieces front to back, each minus the visible pieces in front.
     pub fn visible_set(self, screen: &ScreenScene) -> (VisibleSet, BspStats) {
+        let (pieces, stats) = self.into_visible_pieces(screen);
+        (VisibleSet::of_pieces(pieces), stats)
+    }
+
+    /// The visible pieces ([`Self::into_coverage`]'s), with the tree's counters and the
+    /// coverage pass's (visible pieces, pieces it proved covered).
+    pub fn into_visible_pieces(self, screen: &ScreenScene) -> (Vec<Piece>, BspStats) {
         let mut stats = self.stats.clone();
         let coverage = self.into_coverage(screen);
         stats.covered += coverage.stats.covers.hits;
         let pieces = coverage.into_pieces();
         stats.visible_pieces = pieces.len();
-        (VisibleSet::of_pieces(pieces), stats)
+        (pieces, stats)
     }
 }
 

@@ -38,13 +38,7 @@ impl Strategy for BspTree {
         let strips = Strips::for_pieces(&opaque);
         let strip_count = strips.count();
         let (visible, st) = solve_strips(strips.cut(opaque), report, |strip, report| {
-            let bsp = Bsp::build_from(screen, strip, report);
-            let mut st = bsp.stats.clone();
-            let coverage = bsp.into_coverage(screen);
-            st.covered += coverage.stats.covers.hits;
-            let visible = coverage.into_pieces();
-            st.visible_pieces = visible.len();
-            Ok((visible, st))
+            Ok(Bsp::build_from(screen, strip, report).into_visible_pieces(screen))
         })
         .expect("the BSP never gives up");
         let (visible, layered, translucent_bsp) = if layered {

@@ -216,14 +216,11 @@ impl<'a> Coverage<'a> {
         // other meets a part), and the first of them is known to meet it.
         let try_whole = in_front && !near.is_empty() && self.stats.covers.worth_trying();
         if try_whole {
-            let outline = Outline::of(&piece);
-            let live = &self.visible;
-            self.stats.overlap_tests += near.len();
-            near.retain(|&v| !outline.separated_from(self.screen, live.get(v).expect("live")));
+            near = self.meeting(&piece, &near);
             if near.is_empty() {
                 return vec![piece];
             }
-            let fronts: Vec<&Piece> = (near.iter()).map(|&v| live.get(v).expect("live")).collect();
+            let fronts = self.live_pieces(&near);
             if self.stats.covers.record(covered(&piece, &fronts)) {
                 return Vec::new();
             }
@@ -353,6 +350,13 @@ impl<'a> Coverage<'a> {
             .collect()
     }
 
+    /// The live pieces `at` those indices.
+    fn live_pieces(&self, at: &[u32]) -> Vec<&Piece> {
+        at.iter()
+            .map(|&v| self.visible.get(v).expect("live"))
+            .collect()
+    }
+
     /// Is `piece` proven hidden whole, before any cut, by the live pieces `meeting` it (all
     /// of them)? When each lies in front of it there (it can hide no part of them:
     /// [`cannot_hide`]) and it lies within their union ([`covered`]). Inserted in any order,
@@ -362,10 +366,8 @@ impl<'a> Coverage<'a> {
         if meeting.is_empty() {
             return false;
         }
-        let (screen, live) = (self.screen, &self.visible);
-        let fronts: Vec<&Piece> = (meeting.iter())
-            .map(|&v| live.get(v).expect("live"))
-            .collect();
+        let screen = self.screen;
+        let fronts = self.live_pieces(meeting);
         let depth = depth::range(screen, piece);
         let behind_all = (fronts.iter())
             .all(|front| cannot_hide((piece, depth), (front, depth::range(screen, front))));

@@ -111,9 +111,7 @@ pub(crate) fn covered(piece: &Piece, near: &[&Piece]) -> bool {
     }
     // Sides between grid corners, sorted by their ends: a side's partner runs from its second
     // end to its first.
-    let mut by_ends: Vec<([[i64; 2]; 2], u32)> = (sides.iter().enumerate())
-        .filter_map(|(s, side)| side.corners.map(|c| (c, s as u32)))
-        .collect();
+    let mut by_ends: Vec<[[i64; 2]; 2]> = sides.iter().filter_map(|side| side.corners).collect();
     by_ends.sort_unstable();
     // The other sides by a key of their first end's f64 point, x + K·y: a partner's first end
     // is this side's second end, the same exact point, so its x and y are each within the two
@@ -141,9 +139,7 @@ pub(crate) fn covered(piece: &Piece, near: &[&Piece]) -> bool {
         let (v, k) = (near[side.piece as usize], side.k as usize);
         let k1 = (k + 1) % v.len();
         match side.corners {
-            Some([a, c]) => by_ends
-                .binary_search_by(|(ends, _)| ends.cmp(&[c, a]))
-                .is_ok(),
+            Some([a, c]) => by_ends.binary_search(&[c, a]).is_ok(),
             None => {
                 let end = v.point(k1);
                 let [x, y, e] = end;
