@@ -26,6 +26,7 @@ const RECORD: &str = "tests/golden/work_counts.json";
 const SAVINGS: &[&str] = &[
     "occluded",
     "covered",
+    "clear",
     "pieces_placed_whole",
     "meshes_placed_whole",
     "meshes_apart",

@@ -8,6 +8,7 @@
 //! map layers them ([`translucent_layer`]).
 
 use super::bsp::{Bsp, translucent_layer};
+use super::clear::{appended, clear_pieces};
 use super::coverage::Coverage;
 use super::occlusion::unhidden_pieces;
 use super::strips::{Strips, solve_strips};
@@ -35,12 +36,17 @@ impl Strategy for BspTree {
         let see_through = pieces_of(screen, &see_through);
         // What the surface facing the eye proves hidden is never cut by the tree.
         let (opaque, occluded) = unhidden_pieces(screen, &opaque);
-        let strips = Strips::for_pieces(&opaque);
+        // What nothing overlaps is visible whole: only the rest goes into the trees.
+        let clear = clear_pieces(&opaque);
+        let strips = Strips::for_pieces_but(&opaque, &clear);
         let strip_count = strips.count();
-        let (visible, st) = solve_strips(strips.cut(opaque), report, |strip, report| {
+        let (rest, clear) = strips.cut_but(opaque, &clear);
+        let (visible, st) = solve_strips(rest, report, |strip, report| {
             Ok(Bsp::build_from(screen, strip, report).into_visible_pieces(screen))
         })
         .expect("the BSP never gives up");
+        let clear_count = clear.len();
+        let visible = appended(visible, clear);
         let (visible, layered, translucent_bsp) = if layered {
             let mut coverage = Coverage::of_visible(screen, visible);
             let (parts, st) = translucent_layer(screen, &mut coverage, see_through, report);
@@ -53,6 +59,7 @@ impl Strategy for BspTree {
             stats.insert(k.to_string(), v);
         };
         put("occluded", occluded.into());
+        put("clear", clear_count.into());
         put("covered", st.covered.into());
         put("strips", strip_count.into());
         put(
@@ -60,7 +67,7 @@ impl Strategy for BspTree {
             translucent_bsp.is_some().into(),
         );
         // Every opaque piece, as the coverage map counts: the occluded ones never reach a tree.
-        put("pieces", (st.pieces + occluded).into());
+        put("pieces", (st.pieces + occluded + clear_count).into());
         if let Some(t) = translucent_bsp {
             put("translucent_pieces", t.pieces.into());
             put("translucent_fragments", t.fragments.into());

@@ -22,6 +22,7 @@
 pub mod auto;
 pub mod bsp;
 pub mod bsp_tree;
+pub(crate) mod clear;
 pub mod coverage;
 pub mod coverage_map;
 pub(crate) mod covered;

@@ -129,11 +129,8 @@ fn back_facing(screen: &ScreenScene) -> Vec<bool> {
 
 /// The cells. See the module docs.
 pub(crate) struct Occlusion {
-    origin: [i64; 2],
-    /// Cell width and height in grid units (at least 1).
-    size: [i64; 2],
-    /// Cells per row and per column.
-    count: [i64; 2],
+    /// The cells.
+    grid: CellGrid,
     /// Per cell: the cover's far bound, or infinity where the cell is not known to be covered.
     far: Vec<f64>,
     /// Per polygon: seen from the back? Only those pieces are tried: the cover is made of the
@@ -183,19 +180,10 @@ impl Occlusion {
             v.dedup();
             v
         };
-        let side = (count as f64 * cells_per_piece).sqrt().clamp(1.0, 2048.0) as i64;
-        let span = |lo: i64, hi: i64| ((hi - lo).max(1) + side - 1) / side;
-        // At least 2 units: a cell's centre is inside it.
-        let size = [span(all[0], all[2]).max(2), span(all[1], all[3]).max(2)];
-        let count = [
-            ((all[2] - all[0]) / size[0] + 1).min(side),
-            ((all[3] - all[1]) / size[1] + 1).min(side),
-        ];
+        let grid = CellGrid::over(all, count as f64 * cells_per_piece);
         let mut occlusion = Occlusion {
-            origin: [all[0], all[1]],
-            size,
-            count,
-            far: vec![f64::NEG_INFINITY; (count[0] * count[1]) as usize],
+            grid,
+            far: vec![f64::NEG_INFINITY; grid.len()],
             back_facing: Vec::new(),
         };
         // Cells a contour side may meet are not covered (NaN marks them until the end). A
@@ -253,7 +241,7 @@ impl Occlusion {
                 a
             });
         for [u, v] in contour {
-            occlusion.mark_segment(u, v);
+            grid.segment_cells(u, v, |cell| occlusion.far[cell] = f64::NAN);
         }
         drop(sides);
         let fronts: Vec<&Piece> = pieces.iter().copied().filter(|p| ccw(p.poly)).collect();
@@ -276,11 +264,15 @@ impl Occlusion {
         let (boxes, cells): (Vec<[f64; 4]>, Vec<[i64; 4]>) = (fronts.par_iter().with_min_len(1024))
             .map(|p| {
                 let b = bounds(p);
-                (b, self.cells_of(b))
+                (b, self.grid.cells_of(b))
             })
             .unzip();
         let mut inside = vec![false; self.far.len()];
-        let (origin, size, count) = (self.origin, self.size, self.count);
+        let CellGrid {
+            origin,
+            size,
+            count,
+        } = self.grid;
         let width = count[0];
         let band_rows = (count[1] as usize).div_ceil(ROW_BANDS).max(1);
         let band = band_rows * width as usize;
@@ -351,55 +343,6 @@ impl Occlusion {
         inside
     }
 
-    /// The cells (i0, i1, j0, j1, inclusive, unclamped) whose closed rectangles may meet the
-    /// box `b`: widened by a unit to integers that contain it, so the range is a superset.
-    fn cells_of(&self, b: [f64; 4]) -> [i64; 4] {
-        let (x0, y0) = (b[0].floor() as i64 - 1, b[1].floor() as i64 - 1);
-        let (x1, y1) = (b[2].ceil() as i64 + 1, b[3].ceil() as i64 + 1);
-        let cell = |v: i64, axis: usize| (v - self.origin[axis]).div_euclid(self.size[axis]);
-        [cell(x0, 0), cell(x1, 0), cell(y0, 1), cell(y1, 1)]
-    }
-
-    /// Marks (NaN) every cell that the segment from `u` to `v` (grid points) may meet: column by
-    /// column of cells, the rows between the segment's lowest and highest y over the column,
-    /// rounded outwards exactly (integer division) and widened by a unit, as [`Self::cells_of`]
-    /// widens boxes. A long slanted side so marks the cells along it, not its whole box.
-    fn mark_segment(&mut self, u: [i64; 2], v: [i64; 2]) {
-        let (u, v) = if u[0] <= v[0] { (u, v) } else { (v, u) };
-        let [i0, i1, _, _] = self.cells_of([u[0] as f64, 0.0, v[0] as f64, 0.0]);
-        let (dx, dy) = ((v[0] - u[0]) as i128, (v[1] - u[1]) as i128);
-        for i in i0.max(0)..=i1.min(self.count[0] - 1) {
-            // The segment's x-range within the column (closed), then y at its two ends.
-            let cx0 = (self.origin[0] + i * self.size[0]).max(u[0]);
-            let cx1 = (self.origin[0] + (i + 1) * self.size[0]).min(v[0]);
-            let (ylo, yhi) = if dx == 0 {
-                (u[1].min(v[1]), u[1].max(v[1]))
-            } else if cx0 > cx1 {
-                continue;
-            } else {
-                // y(x) = u.y + (x - u.x)·dy / dx, exactly bracketed by floor and ceil.
-                let at = |x: i64| {
-                    let num = (x - u[0]) as i128 * dy;
-                    let floor = num.div_euclid(dx);
-                    let ceil = floor + (num.rem_euclid(dx) != 0) as i128;
-                    (u[1] as i128 + floor, u[1] as i128 + ceil)
-                };
-                let (a, b) = (at(cx0), at(cx1));
-                (a.0.min(b.0) as i64, a.1.max(b.1) as i64)
-            };
-            let col = [
-                (self.origin[0] + i * self.size[0]) as f64,
-                ylo as f64,
-                (self.origin[0] + i * self.size[0]) as f64,
-                yhi as f64,
-            ];
-            let [_, _, j0, j1] = self.cells_of(col);
-            for j in j0.max(0)..=j1.min(self.count[1] - 1) {
-                self.far[(j * self.count[0] + i) as usize] = f64::NAN;
-            }
-        }
-    }
-
     /// Removes from `pieces` those [`Occlusion::hides`]; returns how many.
     fn drop_hidden(&self, screen: &ScreenScene, pieces: &mut Vec<Piece>) -> usize {
         // Each test reads the cells only: on all cores.
@@ -438,20 +381,104 @@ impl Occlusion {
 
     /// Do covered cells hold the box `b` (grid units), all nearer than `near()`?
     fn hides_within(&self, b: [f64; 4], near: impl FnOnce() -> f64) -> bool {
-        let [i0, i1, j0, j1] = self.cells_of(b);
-        if i0 < 0 || j0 < 0 || i1 >= self.count[0] || j1 >= self.count[1] {
+        let [i0, i1, j0, j1] = self.grid.cells_of(b);
+        if i0 < 0 || j0 < 0 || i1 >= self.grid.count[0] || j1 >= self.grid.count[1] {
             return false;
         }
         let mut far = f64::NEG_INFINITY;
         for j in j0..=j1 {
             for i in i0..=i1 {
-                far = far.max(self.far[(j * self.count[0] + i) as usize]);
+                far = far.max(self.far[(j * self.grid.count[0] + i) as usize]);
                 if far == f64::INFINITY {
                     return false;
                 }
             }
         }
         near() > far
+    }
+}
+
+/// Cells with integer corners over a frame of the screen grid, row by row: cell (i, j) is
+/// `[origin + (i, j)·size, origin + (i + 1, j + 1)·size]`, at index `j·count[0] + i`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CellGrid {
+    pub(crate) origin: [i64; 2],
+    /// Cell width and height in grid units (at least 2: a cell's centre is inside it).
+    pub(crate) size: [i64; 2],
+    /// Cells per row and per column.
+    pub(crate) count: [i64; 2],
+}
+
+impl CellGrid {
+    /// About `cells` cells (at most 2048 a side) over the frame `all` (x0, y0, x1, y1).
+    pub(crate) fn over(all: [i64; 4], cells: f64) -> CellGrid {
+        let side = cells.sqrt().clamp(1.0, 2048.0) as i64;
+        let span = |lo: i64, hi: i64| ((hi - lo).max(1) + side - 1) / side;
+        let size = [span(all[0], all[2]).max(2), span(all[1], all[3]).max(2)];
+        let count = [
+            ((all[2] - all[0]) / size[0] + 1).min(side),
+            ((all[3] - all[1]) / size[1] + 1).min(side),
+        ];
+        CellGrid {
+            origin: [all[0], all[1]],
+            size,
+            count,
+        }
+    }
+
+    /// How many cells.
+    pub(crate) fn len(&self) -> usize {
+        (self.count[0] * self.count[1]) as usize
+    }
+
+    /// The cells (i0, i1, j0, j1, inclusive, unclamped) whose closed rectangles may meet the
+    /// box `b`: widened by a unit to integers that contain it, so the range is a superset.
+    pub(crate) fn cells_of(&self, b: [f64; 4]) -> [i64; 4] {
+        let (x0, y0) = (b[0].floor() as i64 - 1, b[1].floor() as i64 - 1);
+        let (x1, y1) = (b[2].ceil() as i64 + 1, b[3].ceil() as i64 + 1);
+        let cell = |v: i64, axis: usize| (v - self.origin[axis]).div_euclid(self.size[axis]);
+        [cell(x0, 0), cell(x1, 0), cell(y0, 1), cell(y1, 1)]
+    }
+
+    /// Calls `mark` with (the index of) every cell that the segment from `u` to `v` (grid
+    /// points) may meet: column by column of cells, the rows between the segment's lowest and
+    /// highest y over the column, rounded outwards exactly (integer division) and widened by a
+    /// unit, as [`Self::cells_of`] widens boxes. A long slanted side so marks the cells along
+    /// it, not its whole box.
+    pub(crate) fn segment_cells(&self, u: [i64; 2], v: [i64; 2], mut mark: impl FnMut(usize)) {
+        let (u, v) = if u[0] <= v[0] { (u, v) } else { (v, u) };
+        let [i0, i1, _, _] = self.cells_of([u[0] as f64, 0.0, v[0] as f64, 0.0]);
+        let (dx, dy) = ((v[0] - u[0]) as i128, (v[1] - u[1]) as i128);
+        for i in i0.max(0)..=i1.min(self.count[0] - 1) {
+            // The segment's x-range within the column (closed), then y at its two ends.
+            let cx0 = (self.origin[0] + i * self.size[0]).max(u[0]);
+            let cx1 = (self.origin[0] + (i + 1) * self.size[0]).min(v[0]);
+            let (ylo, yhi) = if dx == 0 {
+                (u[1].min(v[1]), u[1].max(v[1]))
+            } else if cx0 > cx1 {
+                continue;
+            } else {
+                // y(x) = u.y + (x - u.x)·dy / dx, exactly bracketed by floor and ceil.
+                let at = |x: i64| {
+                    let num = (x - u[0]) as i128 * dy;
+                    let floor = num.div_euclid(dx);
+                    let ceil = floor + (num.rem_euclid(dx) != 0) as i128;
+                    (u[1] as i128 + floor, u[1] as i128 + ceil)
+                };
+                let (a, b) = (at(cx0), at(cx1));
+                (a.0.min(b.0) as i64, a.1.max(b.1) as i64)
+            };
+            let col = [
+                (self.origin[0] + i * self.size[0]) as f64,
+                ylo as f64,
+                (self.origin[0] + i * self.size[0]) as f64,
+                yhi as f64,
+            ];
+            let [_, _, j0, j1] = self.cells_of(col);
+            for j in j0.max(0)..=j1.min(self.count[1] - 1) {
+                mark((j * self.count[0] + i) as usize);
+            }
+        }
     }
 }
 

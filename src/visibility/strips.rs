@@ -64,23 +64,39 @@ impl Strips {
     /// and fewer (down to one) while the pieces' bounds would meet more than 1.25 strips on
     /// average; or as [`with_strip_size`] sets.
     pub fn for_pieces(pieces: &[Piece]) -> Strips {
+        Strips::for_boxes(boxes_of(pieces))
+    }
+
+    /// [`Self::for_pieces`] for the pieces not flagged in `whole` (those [`Self::cut_but`]
+    /// keeps whole).
+    pub(crate) fn for_pieces_but(pieces: &[Piece], whole: &[bool]) -> Strips {
+        let boxes = boxes_of(pieces);
+        Strips::for_boxes(
+            (boxes.into_iter().zip(whole))
+                .filter_map(|(b, &w)| (!w).then_some(b))
+                .collect(),
+        )
+    }
+
+    /// [`Self::for_pieces`] of the pieces with the bounds `boxes`.
+    fn for_boxes(boxes: Vec<[f64; 4]>) -> Strips {
         if let Some(size) = STRIP_SIZE.with(Cell::get) {
-            return Strips::with_count(pieces, (pieces.len() / size).clamp(1, MOST_STRIPS));
+            let count = (boxes.len() / size).clamp(1, MOST_STRIPS);
+            return Strips::at_quantiles(&centres_of(&boxes), count);
         }
-        let mut count = (pieces.len() / PIECES_PER_STRIP).clamp(1, MOST_STRIPS);
+        let mut count = (boxes.len() / PIECES_PER_STRIP).clamp(1, MOST_STRIPS);
         if count == 1 {
             return Strips::none();
         }
         // Large pieces (a soup of crossing faces) would be cut into many parts, each strip
         // holding most of the scene: halve the strips until the cuts add at most a quarter.
-        let boxes = boxes_of(pieces);
         let centres = centres_of(&boxes);
         loop {
             let strips = Strips::at_quantiles(&centres, count);
             let parts: usize = (boxes.par_iter())
                 .map(|b| strips.last(b) - strips.first(b) + 1)
                 .sum();
-            if 4 * parts <= 5 * pieces.len() || strips.count() == 1 {
+            if 4 * parts <= 5 * boxes.len() || strips.count() == 1 {
                 return strips;
             }
             count /= 2;
@@ -89,6 +105,7 @@ impl Strips {
 
     /// At most `count` strips holding about as many of `pieces` each: the cuts are quantiles of
     /// the pieces' centres in x (equal quantiles give one cut).
+    #[cfg(test)]
     pub fn with_count(pieces: &[Piece], count: usize) -> Strips {
         if count <= 1 || pieces.is_empty() {
             return Strips { cuts: Vec::new() };
@@ -120,15 +137,41 @@ impl Strips {
 
     /// The pieces of each strip, left to right: every piece cut exactly by the cuts it crosses,
     /// its parts in the order of `pieces`.
-    pub fn cut(&self, mut pieces: Vec<Piece>) -> Vec<Vec<Piece>> {
+    pub fn cut(&self, pieces: Vec<Piece>) -> Vec<Vec<Piece>> {
+        let whole = vec![false; pieces.len()];
+        self.cut_but(pieces, &whole).0
+    }
+
+    /// [`Self::cut`] of the pieces not flagged in `whole`, and the flagged ones uncut, in the
+    /// order of `pieces` (each piece is moved once either way).
+    pub(crate) fn cut_but(
+        &self,
+        mut pieces: Vec<Piece>,
+        whole: &[bool],
+    ) -> (Vec<Vec<Piece>>, Vec<Piece>) {
+        let kept = whole.iter().filter(|&&w| w).count();
+        let mut kept_whole = Vec::with_capacity(kept);
         if self.cuts.is_empty() {
-            return vec![pieces];
+            let mut strip = Vec::with_capacity(pieces.len() - kept);
+            for (piece, &w) in pieces.into_iter().zip(whole) {
+                if w {
+                    kept_whole.push(piece);
+                } else {
+                    strip.push(piece);
+                }
+            }
+            return (vec![strip], kept_whole);
         }
         // Sized first (an upper bound: each piece in every strip its bounds meet), so that each
         // piece is moved once: pieces are a few hundred bytes each.
         let boxes = boxes_of(&pieces);
         let mut sizes = vec![0usize; self.count()];
-        for b in &boxes {
+        for b in boxes
+            .iter()
+            .zip(whole)
+            .filter(|(_, w)| !**w)
+            .map(|(b, _)| b)
+        {
             for size in &mut sizes[self.first(b)..=self.last(b)] {
                 *size += 1;
             }
@@ -138,6 +181,10 @@ impl Strips {
         // strips are never both whole in memory. A piece goes to a strip at most once, so each
         // strip reversed at the end is in the order of `pieces`.
         while let Some(piece) = pop_giving_back(&mut pieces) {
+            if whole[pieces.len()] {
+                kept_whole.push(piece);
+                continue;
+            }
             let b = &boxes[pieces.len()];
             let (mut k, last) = (self.first(b), self.last(b));
             let mut rest = piece;
@@ -160,8 +207,9 @@ impl Strips {
                 k += 1;
             }
         }
+        kept_whole.reverse();
         strips.par_iter_mut().for_each(|strip| strip.reverse());
-        strips
+        (strips, kept_whole)
     }
 
     /// The first strip that bounds `b` meet: cuts left of them cannot meet the piece.
