@@ -40,46 +40,41 @@ pub(crate) fn appended(a: Vec<Piece>, b: Vec<Piece>) -> Vec<Piece> {
 /// Per piece of `pieces` (whole polygons' pieces, every vertex a grid corner): is it clear?
 /// All `false` when a piece has a vertex off the grid.
 pub(crate) fn clear_pieces(pieces: &[Piece]) -> Vec<bool> {
-    let corners: Option<Vec<SmallVec<[[i64; 2]; 6]>>> = (pieces.par_iter().with_min_len(1024))
-        .map(Piece::grid_corners)
-        .collect();
-    let Some(corners) = corners.filter(|c| !c.is_empty()) else {
+    // Nothing is kept per piece but the flag: the pieces are read again where needed (a list
+    // of their corners and frames was a fifth of the 1M sphere's peak memory).
+    let on_grid = |p: &Piece| (0..p.len()).all(|k| p.corner(k).is_some());
+    if pieces.is_empty() || !pieces.par_iter().with_min_len(1024).all(on_grid) {
         return vec![false; pieces.len()];
+    }
+    let corners = |p: &Piece| -> SmallVec<[[i64; 2]; 6]> {
+        (0..p.len())
+            .map(|k| p.corner(k).expect("on the grid"))
+            .collect()
     };
-    let frame = |c: &[[i64; 2]]| {
-        c.iter()
-            .fold([i64::MAX, i64::MAX, i64::MIN, i64::MIN], |f, p| {
+    let all = (pieces.par_iter().with_min_len(1024))
+        .map(Piece::grid_frame)
+        .reduce(
+            || [i64::MAX, i64::MAX, i64::MIN, i64::MIN],
+            |f, b| {
                 [
-                    f[0].min(p[0]),
-                    f[1].min(p[1]),
-                    f[2].max(p[0]),
-                    f[3].max(p[1]),
+                    f[0].min(b[0]),
+                    f[1].min(b[1]),
+                    f[2].max(b[2]),
+                    f[3].max(b[3]),
                 ]
-            })
-    };
-    let frames: Vec<[i64; 4]> = corners.iter().map(|c| frame(c)).collect();
-    let all = frames
-        .iter()
-        .fold([i64::MAX, i64::MAX, i64::MIN, i64::MIN], |f, b| {
-            [
-                f[0].min(b[0]),
-                f[1].min(b[1]),
-                f[2].max(b[2]),
-                f[3].max(b[3]),
-            ]
-        });
+            },
+        );
     let grid = CellGrid::over(all, pieces.len() as f64 * CELLS_PER_PIECE);
     let count: Vec<AtomicU32> = (0..grid.len()).map(|_| AtomicU32::new(0)).collect();
-    for [u, v] in contour(&corners) {
+    for [u, v] in contour(pieces) {
         grid.segment_cells(u, v, |cell| count[cell].store(MARKED, Ordering::Relaxed));
     }
-    let cells_of = |f: &[i64; 4]| grid.cells_of(f.map(|v| v as f64));
-    let in_grid =
-        |[i0, i1, j0, j1]: [i64; 4]| i0 >= 0 && j0 >= 0 && i1 < grid.count[0] && j1 < grid.count[1];
+    let cells_of = |p: &Piece| grid.cells_of(p.grid_frame().map(|v| v as f64));
     // Each unmarked cell's count: the pieces holding its moved centre. Counts only grow, so the
     // order does not matter; a marked cell is never counted.
-    (corners.par_iter().zip(&frames).with_min_len(1024)).for_each(|(c, f)| {
-        let [i0, i1, j0, j1] = cells_of(f);
+    (pieces.par_iter().with_min_len(1024)).for_each(|p| {
+        let c = corners(p);
+        let [i0, i1, j0, j1] = cells_of(p);
         for j in j0.max(0)..=j1.min(grid.count[1] - 1) {
             for i in i0.max(0)..=i1.min(grid.count[0] - 1) {
                 let cell = (j * grid.count[0] + i) as usize;
@@ -87,16 +82,19 @@ pub(crate) fn clear_pieces(pieces: &[Piece]) -> Vec<bool> {
                     grid.origin[0] + i * grid.size[0] + grid.size[0] / 2,
                     grid.origin[1] + j * grid.size[1] + grid.size[1] / 2,
                 ];
-                if count[cell].load(Ordering::Relaxed) != MARKED && holds_moved(c, centre) {
+                if count[cell].load(Ordering::Relaxed) != MARKED && holds_moved(&c, centre) {
                     count[cell].fetch_add(1, Ordering::Relaxed);
                 }
             }
         }
     });
-    (frames.par_iter().with_min_len(1024))
-        .map(|f| {
-            let [i0, i1, j0, j1] = cells_of(f);
-            in_grid([i0, i1, j0, j1])
+    (pieces.par_iter().with_min_len(1024))
+        .map(|p| {
+            let [i0, i1, j0, j1] = cells_of(p);
+            i0 >= 0
+                && j0 >= 0
+                && i1 < grid.count[0]
+                && j1 < grid.count[1]
                 && (j0..=j1).all(|j| {
                     (i0..=i1).all(|i| {
                         count[(j * grid.count[0] + i) as usize].load(Ordering::Relaxed) == 1
@@ -120,23 +118,21 @@ fn holds_moved(c: &[[i64; 2]], p: [i64; 2]) -> bool {
     })
 }
 
-/// The contour sides' segments of pieces with the corners `corners`: the segments along which
+/// The contour sides' segments of `pieces` (every vertex on the grid): the segments along which
 /// the sides do not cancel (as many running one way as the other). Each side is sorted as its
 /// segment (ends in increasing order) with its direction in the last bit (32 bytes a side):
 /// the sides of one segment are then neighbours, and no piece is read again (reading each
 /// side's ends back from its piece, in the order of a hash of the segments, was half of the
 /// time of this module on dragon).
-fn contour(corners: &[SmallVec<[[i64; 2]; 6]>]) -> Vec<[[i64; 2]; 2]> {
+fn contour(pieces: &[Piece]) -> Vec<[[i64; 2]; 2]> {
     // Grid coordinates are at most 2^53 in size: doubled and a bit added, they still fit.
     let side = |u: [i64; 2], v: [i64; 2]| {
         let (lo, hi, up) = if u <= v { (u, v, 1) } else { (v, u, 0) };
         [lo[0], lo[1], hi[0], hi[1] << 1 | up]
     };
-    let mut sides: Vec<[i64; 4]> = (corners.par_iter().with_min_len(1024))
-        .flat_map_iter(|c| {
-            let n = c.len();
-            (0..n).map(move |s| side(c[s], c[(s + 1) % n]))
-        })
+    let corner = |p: &Piece, k: usize| p.corner(k % p.len()).expect("on the grid");
+    let mut sides: Vec<[i64; 4]> = (pieces.par_iter().with_min_len(1024))
+        .flat_map_iter(|p| (0..p.len()).map(move |k| side(corner(p, k), corner(p, k + 1))))
         .collect();
     sides.par_sort_unstable();
     let segment = |s: &[i64; 4]| [[s[0], s[1]], [s[2], s[3] >> 1]];

@@ -63,6 +63,9 @@ pub struct CoverageStats {
     pub plane_splits: usize,
     /// Pieces proven hidden by the occlusion cells before any cut.
     pub occluded: usize,
+    /// Pieces no other piece overlaps, visible whole without entering a map
+    /// ([`super::clear`]).
+    pub clear: usize,
     /// Pieces tried whole against the visible pieces in front of them, before any cut, and
     /// those proven hidden so ([`covered`]).
     pub covers: CoverTries,
@@ -75,6 +78,12 @@ impl CoverageStats {
         self.inserted += n;
         self.occluded += n;
     }
+
+    /// Counts `n` clear pieces ([`super::clear`]) kept out of the map: inserted and clear.
+    pub(crate) fn clear_before_insertion(&mut self, n: usize) {
+        self.inserted += n;
+        self.clear += n;
+    }
 }
 
 impl Counters for CoverageStats {
@@ -84,6 +93,7 @@ impl Counters for CoverageStats {
         self.overlap_tests += o.overlap_tests;
         self.plane_splits += o.plane_splits;
         self.occluded += o.occluded;
+        self.clear += o.clear;
         self.covers.add(&o.covers);
     }
 }

@@ -12,8 +12,9 @@
 //! order of a BSP of their own pieces ([`translucent_layer`]).
 
 use super::bsp::translucent_layer;
+use super::clear::{appended, clear_pieces};
 use super::coverage::{Coverage, CoverageStats, nearest_first};
-use super::occlusion::{drop_hidden, unhidden_pieces};
+use super::occlusion::unhidden_pieces;
 use super::strips::{Strips, solve_strips};
 use super::visible_set::{Stats, VisibleSet};
 use super::{Strategy, pieces_of, translucent_polygons};
@@ -59,6 +60,7 @@ impl Strategy for CoverageMap {
             put("replaced", cs.replaced.into());
             put("overlap_tests", cs.overlap_tests.into());
             put("occluded", cs.occluded.into());
+            put("clear", cs.clear.into());
             put("covered", cs.covers.hits.into());
             put("strips", strips.into());
             (visible, Vec::new())
@@ -86,42 +88,22 @@ pub fn visible_set_with_progress(
 
 /// The visible pieces of the polygons `polys` (increasing) by the coverage map: their pieces
 /// less what the occlusion cells prove hidden ([`unhidden_pieces`]: hidden triangles are never
-/// made into pieces), then [`visible_pieces`]; the dropped pieces count as inserted and occluded.
+/// made into pieces) and those no other piece overlaps ([`clear_pieces`]: visible whole, never
+/// in a map), the rest strip by strip on all cores ([`super::strips`]), with the map's counters
+/// summed (the dropped and the clear pieces count as inserted) and the number of strips.
 fn visible_pieces_of(
     screen: &ScreenScene,
     polys: &[u32],
     report: Option<Report>,
 ) -> (Vec<Piece>, CoverageStats, usize) {
     let (pieces, occluded) = unhidden_pieces(screen, polys);
-    let (visible, mut stats, strips) = visible_pieces(screen, pieces, report, false);
+    let clear = clear_pieces(&pieces);
+    let strips = Strips::for_pieces_but(&pieces, &clear);
+    let (rest, clear) = strips.cut_but(pieces, &clear);
+    let (visible, mut stats) = visible_pieces_of_strips(screen, rest, report);
     stats.dropped_before_insertion(occluded);
-    (visible, stats, strips)
-}
-
-/// The visible pieces of `pieces` by the coverage map ([`coverage_of`]), strip by strip on all
-/// cores when there are many ([`super::strips`]; the occlusion cells, when `occlusion`, are
-/// then applied to the whole scene first), with the map's counters summed and the number of
-/// strips.
-pub(crate) fn visible_pieces(
-    screen: &ScreenScene,
-    mut pieces: Vec<Piece>,
-    report: Option<Report>,
-    occlusion: bool,
-) -> (Vec<Piece>, CoverageStats, usize) {
-    let strips = Strips::for_pieces(&pieces);
-    if strips.count() == 1 {
-        let coverage = coverage_of(screen, pieces, report, occlusion);
-        let stats = coverage.stats.clone();
-        return (coverage.into_pieces(), stats, 1);
-    }
-    let occluded = if occlusion {
-        drop_hidden(screen, &mut pieces)
-    } else {
-        0
-    };
-    let (visible, mut stats) = visible_pieces_of_strips(screen, strips.cut(pieces), report);
-    stats.dropped_before_insertion(occluded);
-    (visible, stats, strips.count())
+    stats.clear_before_insertion(clear.len());
+    (appended(visible, clear), stats, strips.count())
 }
 
 /// The visible pieces of `strips` (pieces already cut into strips, [`Strips::cut`]) by the
@@ -132,20 +114,19 @@ pub(crate) fn visible_pieces_of_strips(
     report: Option<Report>,
 ) -> (Vec<Piece>, CoverageStats) {
     solve_strips(strips, report, |strip, report| {
-        let coverage = coverage_of(screen, strip, report, false);
+        let coverage = coverage_of(screen, strip, report);
         let stats = coverage.stats.clone();
         Ok((coverage.into_pieces(), stats))
     })
     .expect("the coverage map never gives up")
 }
 
-/// The coverage map of `pieces`, inserted nearest corner first, reporting stage "visible set";
-/// with occlusion cells when `occlusion` ([`Coverage::with_occlusion`]).
+/// The coverage map of `pieces`, inserted nearest corner first, reporting stage "visible set"
+/// (no occlusion cells: the caller's [`unhidden_pieces`] applied them to the whole scene).
 pub(crate) fn coverage_of<'a>(
     screen: &'a ScreenScene,
     pieces: Vec<Piece>,
     report: Option<Report>,
-    occlusion: bool,
 ) -> Coverage<'a> {
     // The order sorted, not the pieces: a piece is a few hundred bytes inline, and a sort
     // moves each many times. A stable sort of the indices gives the stable sort's order. Each
@@ -153,11 +134,8 @@ pub(crate) fn coverage_of<'a>(
     // polygons: a table over all of them, per strip, cost more than the sort).
     let mut order: Vec<u32> = (0..pieces.len() as u32).collect();
     order.sort_by_cached_key(|&i| nearest_first(screen, pieces[i as usize].poly));
-    let mut coverage = Coverage::with_occlusion(
-        screen,
-        order.iter().map(|&i| &pieces[i as usize]),
-        occlusion,
-    );
+    let mut coverage =
+        Coverage::with_occlusion(screen, order.iter().map(|&i| &pieces[i as usize]), false);
     let mut ticker = Ticker::new(report, "visible set", pieces.len() as u64);
     let mut pieces: Vec<Option<Piece>> = pieces.into_iter().map(Some).collect();
     for (n, &i) in order.iter().enumerate() {

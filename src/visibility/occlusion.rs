@@ -46,6 +46,7 @@ const ROW_BANDS: usize = 32;
 
 /// Removes from `pieces` (the pieces of whole polygons) those facing away that the occlusion
 /// cells prove hidden; returns how many. What is left has the same visible set.
+#[cfg(test)]
 pub(crate) fn drop_hidden(screen: &ScreenScene, pieces: &mut Vec<Piece>) -> usize {
     let refs: Vec<&Piece> = pieces.iter().collect();
     let Some(cells) = Occlusion::of(screen, &refs, CELLS_PER_PIECE) else {
