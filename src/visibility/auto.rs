@@ -123,7 +123,7 @@ impl Strategy for Auto {
         }
         // What no other piece overlaps is visible whole: no orderer needs it.
         let clear = {
-            let flags = clear_pieces(&overlapping);
+            let flags = clear_pieces(screen, &overlapping);
             let mut k = 0;
             let clear: Vec<Piece> = (overlapping.extract_if(.., |_| {
                 k += 1;

@@ -37,7 +37,7 @@ impl Strategy for BspTree {
         // What the surface facing the eye proves hidden is never cut by the tree.
         let (opaque, occluded) = unhidden_pieces(screen, &opaque);
         // What nothing overlaps is visible whole: only the rest goes into the trees.
-        let clear = clear_pieces(&opaque);
+        let clear = clear_pieces(screen, &opaque);
         let strips = Strips::for_pieces_but(&opaque, &clear);
         let strip_count = strips.count();
         let (rest, clear) = strips.cut_but(opaque, &clear);

@@ -21,7 +21,8 @@
 //! when one is off the grid.
 
 use super::occlusion::{CELLS_PER_PIECE, CellGrid};
-use crate::exact::polygon::Piece;
+use crate::exact::polygon::{Boundary, Piece};
+use crate::project::ScreenScene;
 use rayon::prelude::*;
 use smallvec::SmallVec;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -37,9 +38,10 @@ pub(crate) fn appended(a: Vec<Piece>, b: Vec<Piece>) -> Vec<Piece> {
     long
 }
 
-/// Per piece of `pieces` (whole polygons' pieces, every vertex a grid corner): is it clear?
+/// Per piece of `pieces` (whole polygons' pieces of `screen`, every vertex a grid corner): is it
+/// clear?
 /// All `false` when a piece has a vertex off the grid.
-pub(crate) fn clear_pieces(pieces: &[Piece]) -> Vec<bool> {
+pub(crate) fn clear_pieces(screen: &ScreenScene, pieces: &[Piece]) -> Vec<bool> {
     // Nothing is kept per piece but the flag: the pieces are read again where needed (a list
     // of their corners and frames was a fifth of the 1M sphere's peak memory).
     let on_grid = |p: &Piece| (0..p.len()).all(|k| p.corner(k).is_some());
@@ -66,7 +68,7 @@ pub(crate) fn clear_pieces(pieces: &[Piece]) -> Vec<bool> {
         );
     let grid = CellGrid::over(all, pieces.len() as f64 * CELLS_PER_PIECE);
     let count: Vec<AtomicU32> = (0..grid.len()).map(|_| AtomicU32::new(0)).collect();
-    for [u, v] in contour(pieces) {
+    for [u, v] in contour(screen, pieces) {
         grid.segment_cells(u, v, |cell| count[cell].store(MARKED, Ordering::Relaxed));
     }
     let cells_of = |p: &Piece| grid.cells_of(p.grid_frame().map(|v| v as f64));
@@ -118,22 +120,90 @@ fn holds_moved(c: &[[i64; 2]], p: [i64; 2]) -> bool {
     })
 }
 
-/// The contour sides' segments of `pieces` (every vertex on the grid): the segments along which
-/// the sides do not cancel (as many running one way as the other). Each side is sorted as its
-/// segment (ends in increasing order) with its direction in the last bit (32 bytes a side):
-/// the sides of one segment are then neighbours, and no piece is read again (reading each
-/// side's ends back from its piece, in the order of a hash of the segments, was half of the
-/// time of this module on dragon).
-fn contour(pieces: &[Piece]) -> Vec<[[i64; 2]; 2]> {
-    // Grid coordinates are at most 2^53 in size: doubled and a bit added, they still fit.
-    let side = |u: [i64; 2], v: [i64; 2]| {
-        let (lo, hi, up) = if u <= v { (u, v, 1) } else { (v, u, 0) };
-        [lo[0], lo[1], hi[0], hi[1] << 1 | up]
+/// The contour sides' segments of `pieces` (every vertex on the grid, of polygons of
+/// `screen`): the segments along which the sides do not cancel (as many running one way as the
+/// other).
+///
+/// Most sides run along a side of their polygon between two shared corners (a mesh's vertex is
+/// one grid point, `ScreenScene::grid_points`, whichever faces name it): those are matched first
+/// by the two corners' indices, 8 bytes a side. Sides of one pair of corners that cancel leave;
+/// the others, and every side not so keyed, are matched by their ends' coordinates: each sorted
+/// as its segment (ends in increasing order) with its direction in the last bit (32 bytes a
+/// side), so that the sides of one segment are neighbours and no piece is read again (reading
+/// each side's ends back from its piece, in the order of a hash of the segments, was half of
+/// this module's time on dragon). Either way a run of sides cancels only as a whole, and a
+/// cancelled run adds nothing to any winding number, so what is left decides the same.
+fn contour(screen: &ScreenScene, pieces: &[Piece]) -> Vec<[[i64; 2]; 2]> {
+    use rayon::iter::Either;
+    let xy = |i: u32| {
+        let g = screen.grid_points[i as usize];
+        [g.x, g.y]
+    };
+    let side = coordinate_side;
+    // Side k of `p` as (lower corner index, upper, runs upwards) packed in a u64, when it runs
+    // between the two corners of its polygon's side (a line can run on along collinear sides:
+    // then its ends are not those corners).
+    let by_corners = |p: &Piece, k: usize| -> Option<u64> {
+        let Boundary::Outline { poly, side } = p.boundary(k) else {
+            return None;
+        };
+        let corners = screen.corner_indices(&screen.polys[poly as usize]);
+        let (i, j) = (
+            corners[side as usize],
+            corners[(side as usize + 1) % corners.len()],
+        );
+        let (a, b) = (p.corner(k)?, p.corner((k + 1) % p.len())?);
+        let (from, to) = if (xy(i), xy(j)) == (a, b) {
+            (i, j)
+        } else if (xy(j), xy(i)) == (a, b) {
+            (j, i)
+        } else {
+            return None;
+        };
+        let (lo, hi, up) = if from < to {
+            (from, to, 1)
+        } else {
+            (to, from, 0)
+        };
+        (hi < 1 << 31).then_some((lo as u64) << 33 | (hi as u64) << 1 | up)
     };
     let corner = |p: &Piece, k: usize| p.corner(k % p.len()).expect("on the grid");
-    let mut sides: Vec<[i64; 4]> = (pieces.par_iter().with_min_len(1024))
-        .flat_map_iter(|p| (0..p.len()).map(move |k| side(corner(p, k), corner(p, k + 1))))
+    let (mut keyed, mut sides): (Vec<u64>, Vec<[i64; 4]>) = (pieces.par_iter().with_min_len(1024))
+        .flat_map_iter(|p| {
+            (0..p.len()).map(move |k| match by_corners(p, k) {
+                Some(key) => Either::Left(key),
+                None => Either::Right(side(corner(p, k), corner(p, k + 1))),
+            })
+        })
+        .partition_map(|e| e);
+    keyed.par_sort_unstable();
+    let left: Vec<[i64; 4]> = (keyed.par_chunk_by(|a, b| a >> 1 == b >> 1))
+        .filter(|run| 2 * run.iter().filter(|&&s| s & 1 == 1).count() != run.len())
+        .flat_map_iter(|run| {
+            run.iter().map(|&s| {
+                let (lo, hi) = ((s >> 33) as u32, ((s >> 1) & 0xffff_ffff) as u32);
+                match s & 1 {
+                    1 => side(xy(lo), xy(hi)),
+                    _ => side(xy(hi), xy(lo)),
+                }
+            })
+        })
         .collect();
+    drop(keyed);
+    sides.extend(left);
+    uncancelled(sides)
+}
+
+/// The side of a piece from `u` to `v` as [`uncancelled`] sorts it: its segment (ends in
+/// increasing order) with its direction in the last bit. Grid coordinates are at most 2^53 in
+/// size: doubled and a bit added, they still fit.
+fn coordinate_side(u: [i64; 2], v: [i64; 2]) -> [i64; 4] {
+    let (lo, hi, up) = if u <= v { (u, v, 1) } else { (v, u, 0) };
+    [lo[0], lo[1], hi[0], hi[1] << 1 | up]
+}
+
+/// The segments of `sides` ([`coordinate_side`]s) along which they do not cancel.
+fn uncancelled(mut sides: Vec<[i64; 4]>) -> Vec<[[i64; 2]; 2]> {
     sides.par_sort_unstable();
     let segment = |s: &[i64; 4]| [[s[0], s[1]], [s[2], s[3] >> 1]];
     (sides.par_chunk_by(|a, b| segment(a) == segment(b)))
@@ -150,12 +220,14 @@ mod tests {
     use crate::visibility::{initial_pieces, screen_of_polygons};
     use proptest::prelude::*;
 
-    /// The pieces of triangles given as (x, y, z) corners, in either winding.
-    fn pieces_of(tris: &[[[i64; 3]; 3]]) -> Vec<Piece> {
+    /// The screen of triangles given as (x, y, z) corners, in either winding (each corner its
+    /// own grid point), and its pieces.
+    fn pieces_of(tris: &[[[i64; 3]; 3]]) -> (ScreenScene, Vec<Piece>) {
         let s = screen_of_polygons(
             (tris.iter()).map(|t| t.iter().map(|&[x, y, z]| GridPoint { x, y, z }).collect()),
         );
-        initial_pieces(&s)
+        let pieces = initial_pieces(&s);
+        (s, pieces)
     }
 
     /// An n x n sheet of counter-clockwise squares of side `side` at depth `z` from (x0, y0),
@@ -173,8 +245,8 @@ mod tests {
     }
 
     /// Every clear piece overlaps no other piece: the property the module promises.
-    fn clear_ones_overlap_nothing(pieces: &[Piece]) -> usize {
-        let clear = clear_pieces(pieces);
+    fn clear_ones_overlap_nothing(screen: &ScreenScene, pieces: &[Piece]) -> usize {
+        let clear = clear_pieces(screen, pieces);
         for (k, p) in pieces.iter().enumerate().filter(|&(k, _)| clear[k]) {
             for (j, q) in pieces.iter().enumerate() {
                 assert!(
@@ -188,8 +260,8 @@ mod tests {
 
     #[test]
     fn the_inside_of_a_sheet_is_clear_and_its_rim_is_not() {
-        let pieces = pieces_of(&sheet(16, 8, [0, 0], 10));
-        let clear = clear_pieces(&pieces);
+        let (screen, pieces) = pieces_of(&sheet(16, 8, [0, 0], 10));
+        let clear = clear_pieces(&screen, &pieces);
         // The outline is contour: the squares along it are near a marked cell.
         let at = |k: usize| {
             let [x, y, _, _] = pieces[k].grid_frame();
@@ -216,8 +288,8 @@ mod tests {
         for z in [1, 100] {
             let mut tris = sheet(32, 8, [0, 0], 10);
             tris.push([[40, 40, z], [220, 40, z], [130, 220, z]]);
-            let pieces = pieces_of(&tris);
-            let clear = clear_pieces(&pieces);
+            let (screen, pieces) = pieces_of(&tris);
+            let clear = clear_pieces(&screen, &pieces);
             let centre = (0..pieces.len())
                 .find(|&k| pieces[k].grid_frame()[..2] == [128, 96])
                 .unwrap();
@@ -236,7 +308,7 @@ mod tests {
                 clear[far],
                 "a piece far from the triangle is not clear (z {z})"
             );
-            assert!(clear_ones_overlap_nothing(&pieces) > 500);
+            assert!(clear_ones_overlap_nothing(&screen, &pieces) > 500);
         }
     }
 
@@ -247,10 +319,10 @@ mod tests {
         let mut tris = sheet(16, 8, [0, 0], 10);
         let twin = tris[2 * (8 * 16 + 8)];
         tris.push(twin);
-        let pieces = pieces_of(&tris);
-        let clear = clear_pieces(&pieces);
+        let (screen, pieces) = pieces_of(&tris);
+        let clear = clear_pieces(&screen, &pieces);
         assert!(!clear[2 * (8 * 16 + 8)] && !clear[pieces.len() - 1]);
-        clear_ones_overlap_nothing(&pieces);
+        clear_ones_overlap_nothing(&screen, &pieces);
     }
 
     /// A sliver listed twice inside a sheet: each of its sides has a partner running the other
@@ -276,13 +348,13 @@ mod tests {
         tris.extend([[a, b, e], [b, c, e], [c, d, e], [d, a, e]]);
         let sliver = tris.len() - 3;
         tris.push(tris[sliver]);
-        let pieces = pieces_of(&tris);
-        let clear = clear_pieces(&pieces);
+        let (screen, pieces) = pieces_of(&tris);
+        let clear = clear_pieces(&screen, &pieces);
         assert!(
             !clear[sliver] && !clear[pieces.len() - 1],
             "a twin is clear"
         );
-        clear_ones_overlap_nothing(&pieces);
+        clear_ones_overlap_nothing(&screen, &pieces);
     }
 
     /// Cell centres on shared sides and corners (a sheet on the cells' own lattice) are moved
@@ -290,9 +362,53 @@ mod tests {
     #[test]
     fn centres_on_sides_and_corners_count_once() {
         for side in [2, 4, 6] {
-            let pieces = pieces_of(&sheet(24, side, [0, 0], 10));
-            assert!(clear_ones_overlap_nothing(&pieces) > 0, "side {side}");
+            let (screen, pieces) = pieces_of(&sheet(24, side, [0, 0], 10));
+            assert!(
+                clear_ones_overlap_nothing(&screen, &pieces) > 0,
+                "side {side}"
+            );
         }
+    }
+
+    /// Meshes through the whole pipeline, their vertices shared grid points (the sides keyed by
+    /// corner indices): an open sphere (less the back faces the occlusion cells drop, as the
+    /// strategies take it; the rest folds under the front at the silhouette), two
+    /// interpenetrating tori, and a sphere wound inwards with unwelded poles, seen from three
+    /// sides. The contour is the same as matching every side by its ends.
+    #[test]
+    fn clear_pieces_of_meshes_overlap_nothing() {
+        use crate::camera::{Camera, NamedView};
+        use crate::pipeline::prepare;
+        use crate::project::CullMode;
+        use crate::scene::primitives::{holed_sphere_scene, interpenetrating_tori};
+        let mut clear = 0;
+        use crate::scene::primitives::exported_sphere_scene;
+        let scenes = [
+            holed_sphere_scene(48, 24),
+            interpenetrating_tori(24, 12),
+            exported_sphere_scene(2_000),
+        ];
+        for scene in scenes {
+            for view in [NamedView::Iso, NamedView::Front, NamedView::Top] {
+                let camera = Camera::fit(view, scene.bounds().unwrap(), false, 40.0, 256, 256);
+                let screen = prepare(&scene, &camera, CullMode::Auto).screen;
+                let all: Vec<u32> = (0..screen.polys.len() as u32).collect();
+                let pieces = crate::visibility::occlusion::unhidden_pieces(&screen, &all).0;
+                clear += clear_ones_overlap_nothing(&screen, &pieces);
+                // Keyed by corner indices first, the contour is the one of the ends alone.
+                let by_ends = (pieces.iter())
+                    .flat_map(|p| {
+                        let corner = |k: usize| p.corner(k % p.len()).unwrap();
+                        (0..p.len()).map(move |k| coordinate_side(corner(k), corner(k + 1)))
+                    })
+                    .collect();
+                let (mut fast, mut slow) = (contour(&screen, &pieces), uncancelled(by_ends));
+                fast.sort_unstable();
+                slow.sort_unstable();
+                assert_eq!(fast, slow);
+            }
+        }
+        assert!(clear >= 100, "{clear} clear pieces");
     }
 
     proptest! {
@@ -318,7 +434,8 @@ mod tests {
                     tris.push(t);
                 }
             }
-            clear_ones_overlap_nothing(&pieces_of(&tris));
+            let (screen, pieces) = pieces_of(&tris);
+            clear_ones_overlap_nothing(&screen, &pieces);
         }
     }
 }

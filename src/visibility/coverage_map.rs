@@ -97,7 +97,7 @@ fn visible_pieces_of(
     report: Option<Report>,
 ) -> (Vec<Piece>, CoverageStats, usize) {
     let (pieces, occluded) = unhidden_pieces(screen, polys);
-    let clear = clear_pieces(&pieces);
+    let clear = clear_pieces(screen, &pieces);
     let strips = Strips::for_pieces_but(&pieces, &clear);
     let (rest, clear) = strips.cut_but(pieces, &clear);
     let (visible, mut stats) = visible_pieces_of_strips(screen, rest, report);
