@@ -7,7 +7,8 @@
 //! - **order**: only pieces that overlap on screen are compared in depth. The coverage map finds
 //!   them through its screen grid and an exact overlap test ([`crate::exact::polygon::separated`]):
 //!   a piece that overlaps nothing (all of a convex closed mesh once culled, objects apart on
-//!   screen) is placed with no depth comparison.
+//!   screen) is placed with no depth comparison. Most such pieces are found before any pair is
+//!   compared (`visibility::clear`: the `clear` count) and never reach an orderer.
 //! - **split**: a pair is cut where its planes meet only when each reaches in front of the
 //!   other's plane where they overlap (interpenetration, cyclic overlap); every other
 //!   overlapping pair is only clipped, in its depth order.

@@ -3,9 +3,10 @@
 //! front of it ([`Bsp::coverage`]). Slower than the coverage map on interpenetrating soups (the
 //! tree cuts each face by the plane of every other it straddles), and independent of it: the
 //! tests hold the two to the same result. Pieces facing away that the occlusion cells prove
-//! hidden are dropped before the tree is built; large scenes are solved strip by strip on all
-//! cores ([`super::strips`]), a tree per strip. Translucent faces are layered as the coverage
-//! map layers them ([`translucent_layer`]).
+//! hidden are dropped before the tree is built, and those no other piece overlaps
+//! (`visibility::clear`) are visible whole without one; large scenes are solved strip by strip on
+//! all cores ([`super::strips`]), a tree per strip. Translucent faces are layered as the
+//! coverage map layers them ([`translucent_layer`]).
 
 use super::bsp::{Bsp, translucent_layer};
 use super::clear::{appended, clear_pieces};
@@ -66,7 +67,8 @@ impl Strategy for BspTree {
             "translucent_painter_order",
             translucent_bsp.is_some().into(),
         );
-        // Every opaque piece, as the coverage map counts: the occluded ones never reach a tree.
+        // Every opaque piece, as the coverage map counts: the occluded and the clear ones never
+        // reach a tree.
         put("pieces", (st.pieces + occluded + clear_count).into());
         if let Some(t) = translucent_bsp {
             put("translucent_pieces", t.pieces.into());

@@ -64,7 +64,7 @@ pub struct CoverageStats {
     /// Pieces proven hidden by the occlusion cells before any cut.
     pub occluded: usize,
     /// Pieces no other piece overlaps, visible whole without entering a map
-    /// ([`super::clear`]).
+    /// (`visibility::clear`).
     pub clear: usize,
     /// Pieces tried whole against the visible pieces in front of them, before any cut, and
     /// those proven hidden so ([`covered`]).
