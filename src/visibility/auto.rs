@@ -27,11 +27,11 @@
 //! is the coverage map's whatever ran (every exact strategy's is), so the drawing's bytes are
 //! the same.
 
-use super::clear::{appended, clear_pieces};
+use super::clear::clear_pieces;
 use super::coverage_map::visible_pieces_of_strips;
 use super::grid::{NO_BOX, joined, sweep_overlapping};
 use super::occlusion::unhidden_pieces;
-use super::strips::{Strips, solve_strips};
+use super::strips::{Strips, appended, solve_strips};
 use super::tiling::{tiles_convex_region_once, twice_hull_area, twice_ring_area};
 use super::visible_set::{Stats, VisibleSet, put_counts};
 use super::warnock_exact;

@@ -9,10 +9,10 @@
 //! coverage map layers them ([`translucent_layer`]).
 
 use super::bsp::{Bsp, translucent_layer};
-use super::clear::{appended, clear_pieces};
+use super::clear::clear_pieces;
 use super::coverage::Coverage;
 use super::occlusion::unhidden_pieces;
-use super::strips::{Strips, solve_strips};
+use super::strips::{Strips, appended, solve_strips};
 use super::visible_set::{Stats, VisibleSet};
 use super::{Strategy, pieces_of, translucent_polygons};
 use crate::exact::predicates::fallback_count;

@@ -30,17 +30,8 @@ use std::sync::atomic::{AtomicU32, Ordering};
 /// A cell that a contour side may meet.
 const MARKED: u32 = u32::MAX;
 
-/// Two lists of pieces as one: the shorter appended to the longer (a long list grows in place,
-/// its pages remapped, not copied). Deterministic: the same lists give the same order.
-pub(crate) fn appended(a: Vec<Piece>, b: Vec<Piece>) -> Vec<Piece> {
-    let (mut long, mut short) = if a.len() >= b.len() { (a, b) } else { (b, a) };
-    long.append(&mut short);
-    long
-}
-
 /// Per piece of `pieces` (whole polygons' pieces of `screen`, every vertex a grid corner): is it
-/// clear?
-/// All `false` when a piece has a vertex off the grid.
+/// clear? All `false` when a piece has a vertex off the grid.
 pub(crate) fn clear_pieces(screen: &ScreenScene, pieces: &[Piece]) -> Vec<bool> {
     // Nothing is kept per piece but the flag: the pieces are read again where needed (a list
     // of their corners and frames was a fifth of the 1M sphere's peak memory).

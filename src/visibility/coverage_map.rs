@@ -12,10 +12,10 @@
 //! order of a BSP of their own pieces ([`translucent_layer`]).
 
 use super::bsp::translucent_layer;
-use super::clear::{appended, clear_pieces};
+use super::clear::clear_pieces;
 use super::coverage::{Coverage, CoverageStats, nearest_first};
 use super::occlusion::unhidden_pieces;
-use super::strips::{Strips, solve_strips};
+use super::strips::{Strips, appended, solve_strips};
 use super::visible_set::{Stats, VisibleSet};
 use super::{Strategy, pieces_of, translucent_polygons};
 use crate::exact::polygon::Piece;
