@@ -39,9 +39,8 @@ impl Strategy for BspTree {
         let (opaque, occluded) = unhidden_pieces(screen, &opaque);
         // What nothing overlaps is visible whole: only the rest goes into the trees.
         let clear = clear_pieces(screen, &opaque);
-        let strips = Strips::for_pieces_but(&opaque, &clear);
+        let (strips, rest, clear) = Strips::cut_all_but(opaque, &clear);
         let strip_count = strips.count();
-        let (rest, clear) = strips.cut_but(opaque, &clear);
         let (visible, st) = solve_strips(rest, report, |strip, report| {
             Ok(Bsp::build_from(screen, strip, report).into_visible_pieces(screen))
         })

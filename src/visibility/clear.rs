@@ -24,7 +24,6 @@ use super::occlusion::{CELLS_PER_PIECE, CellGrid};
 use crate::exact::polygon::{Boundary, Piece};
 use crate::project::ScreenScene;
 use rayon::prelude::*;
-use smallvec::SmallVec;
 use std::sync::atomic::{AtomicU32, Ordering};
 
 /// A cell that a contour side may meet.
@@ -39,11 +38,6 @@ pub(crate) fn clear_pieces(screen: &ScreenScene, pieces: &[Piece]) -> Vec<bool> 
     if pieces.is_empty() || !pieces.par_iter().with_min_len(1024).all(on_grid) {
         return vec![false; pieces.len()];
     }
-    let corners = |p: &Piece| -> SmallVec<[[i64; 2]; 6]> {
-        (0..p.len())
-            .map(|k| p.corner(k).expect("on the grid"))
-            .collect()
-    };
     let all = (pieces.par_iter().with_min_len(1024))
         .map(Piece::grid_frame)
         .reduce(
@@ -66,7 +60,7 @@ pub(crate) fn clear_pieces(screen: &ScreenScene, pieces: &[Piece]) -> Vec<bool> 
     // Each unmarked cell's count: the pieces holding its moved centre. Counts only grow, so the
     // order does not matter; a marked cell is never counted.
     (pieces.par_iter().with_min_len(1024)).for_each(|p| {
-        let c = corners(p);
+        let c = p.grid_corners().expect("on the grid");
         let [i0, i1, j0, j1] = cells_of(p);
         for j in j0.max(0)..=j1.min(grid.count[1] - 1) {
             for i in i0.max(0)..=i1.min(grid.count[0] - 1) {

@@ -98,8 +98,7 @@ fn visible_pieces_of(
 ) -> (Vec<Piece>, CoverageStats, usize) {
     let (pieces, occluded) = unhidden_pieces(screen, polys);
     let clear = clear_pieces(screen, &pieces);
-    let strips = Strips::for_pieces_but(&pieces, &clear);
-    let (rest, clear) = strips.cut_but(pieces, &clear);
+    let (strips, rest, clear) = Strips::cut_all_but(pieces, &clear);
     let (visible, mut stats) = visible_pieces_of_strips(screen, rest, report);
     stats.dropped_before_insertion(occluded);
     stats.clear_before_insertion(clear.len());

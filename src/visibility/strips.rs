@@ -67,15 +67,21 @@ impl Strips {
         Strips::for_boxes(boxes_of(pieces))
     }
 
-    /// [`Self::for_pieces`] for the pieces not flagged in `whole` (those [`Self::cut_but`]
-    /// keeps whole).
-    pub(crate) fn for_pieces_but(pieces: &[Piece], whole: &[bool]) -> Strips {
-        let boxes = boxes_of(pieces);
-        Strips::for_boxes(
-            (boxes.into_iter().zip(whole))
-                .filter_map(|(b, &w)| (!w).then_some(b))
+    /// The strips for the pieces not flagged in `whole` ([`Self::for_pieces`] of them), those
+    /// pieces cut into them ([`Self::cut`]), and the flagged ones whole, in the order of
+    /// `pieces`: (strips, their pieces, the whole ones). The bounds are found once for both.
+    pub(crate) fn cut_all_but(
+        pieces: Vec<Piece>,
+        whole: &[bool],
+    ) -> (Strips, Vec<Vec<Piece>>, Vec<Piece>) {
+        let boxes = boxes_of(&pieces);
+        let strips = Strips::for_boxes(
+            (boxes.iter().zip(whole))
+                .filter_map(|(b, &w)| (!w).then_some(*b))
                 .collect(),
-        )
+        );
+        let (cut, kept) = strips.cut_with(pieces, whole, &boxes);
+        (strips, cut, kept)
     }
 
     /// [`Self::for_pieces`] of the pieces with the bounds `boxes`.
@@ -138,18 +144,25 @@ impl Strips {
     /// The pieces of each strip, left to right: every piece cut exactly by the cuts it crosses,
     /// its parts in the order of `pieces`.
     pub fn cut(&self, pieces: Vec<Piece>) -> Vec<Vec<Piece>> {
-        let whole = vec![false; pieces.len()];
-        self.cut_but(pieces, &whole).0
+        if self.cuts.is_empty() {
+            return vec![pieces];
+        }
+        let boxes = boxes_of(&pieces);
+        self.cut_with(pieces, &vec![false; boxes.len()], &boxes).0
     }
 
     /// [`Self::cut`] of the pieces not flagged in `whole`, and the flagged ones uncut, in the
-    /// order of `pieces` (each piece is moved once either way).
-    pub(crate) fn cut_but(
+    /// order of `pieces` (each piece is moved once either way); `boxes` are the pieces' bounds.
+    fn cut_with(
         &self,
         mut pieces: Vec<Piece>,
         whole: &[bool],
+        boxes: &[[f64; 4]],
     ) -> (Vec<Vec<Piece>>, Vec<Piece>) {
         let kept = whole.iter().filter(|&&w| w).count();
+        if kept == 0 && self.cuts.is_empty() {
+            return (vec![pieces], Vec::new());
+        }
         let mut kept_whole = Vec::with_capacity(kept);
         if self.cuts.is_empty() {
             let mut strip = Vec::with_capacity(pieces.len() - kept);
@@ -164,7 +177,6 @@ impl Strips {
         }
         // Sized first (an upper bound: each piece in every strip its bounds meet), so that each
         // piece is moved once: pieces are a few hundred bytes each.
-        let boxes = boxes_of(&pieces);
         let mut sizes = vec![0usize; self.count()];
         for b in boxes
             .iter()
