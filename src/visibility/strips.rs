@@ -476,12 +476,10 @@ mod tests {
             .map(|k| k % 3 == 0 || k + 1 == pieces.len())
             .collect();
         let (parts, kept) = strips.cut_with(pieces.clone(), &whole, &boxes);
-        let flagged: Vec<Piece> = (pieces.iter().zip(&whole))
-            .filter_map(|(p, &w)| w.then(|| p.clone()))
-            .collect();
-        let rest: Vec<Piece> = (pieces.iter().zip(&whole))
-            .filter_map(|(p, &w)| (!w).then(|| p.clone()))
-            .collect();
+        let (mut flagged, mut rest) = (Vec::new(), Vec::new());
+        for (p, &w) in pieces.iter().zip(&whole) {
+            if w { &mut flagged } else { &mut rest }.push(p.clone());
+        }
         assert!(flagged.len() > 2 && rest.len() > 2);
         assert_eq!(kept, flagged);
         assert_eq!(parts, strips.cut(rest));
