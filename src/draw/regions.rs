@@ -38,7 +38,6 @@ use crate::project::ScreenScene;
 use crate::scene::{FaceId, Scene, newell_normal};
 use crate::visibility::grid::for_each_near_edges;
 use glam::DVec3;
-use hashbrown::{HashTable, hash_table};
 use rayon::prelude::*;
 use rustc_hash::{FxBuildHasher, FxHashMap};
 use smallvec::SmallVec;
@@ -197,64 +196,111 @@ pub fn surfaces<P: Eq + std::hash::Hash + Send>(
 }
 
 /// Labels for items `0..n` by `key(index)`: equal keys, equal labels, numbered in order of first
-/// appearance. The table holds the first item of each key (4 bytes a slot, where a table of the
-/// keys took 64 in [`surfaces`]: a curved surface of a million faces is a million labels, 134
-/// MB of table), found by the key's `hash` and compared by the full keys. The keys are computed
-/// [`LABEL_CHUNK`] items at a time on all cores (computing a key is most of the work) and
-/// kept for their chunk only; an item with the key of the item before it (a quad's second
-/// triangle, a flat face's fan) takes its label without the table; a key of an earlier chunk
-/// is computed again to compare. Room for every item from the start, so the table never grows
-/// (growing would hold the old table and the new one at once, and rehash every key).
+/// appearance. The keys are computed on all cores, a block of items at a time; an item with the
+/// key of the item before it (a quad's second triangle, a flat face's fan) takes its label. Each
+/// other item is kept only as the top 32 bits of its key's `hash` beside its index: 8 bytes an
+/// item (a table of the keys took 64 in [`surfaces`]: a curved surface of a million faces is a
+/// million labels). Sorted, the items of one hash are neighbours, and only they are compared by
+/// their full keys, computed again (most hashes name one item). One pass in item order then
+/// numbers the keys. (Inserting the items one by one into a table of first items was a serial
+/// stretch of the drawing: a cache miss an item.)
 fn labels_by_key<K: Eq + Send>(
     n: usize,
     key: impl Fn(usize) -> K + Sync,
-    hash: impl Fn(&K) -> u64,
+    hash: impl Fn(&K) -> u64 + Sync,
 ) -> Vec<u32> {
-    let mut first_of_key: HashTable<u32> = HashTable::with_capacity(n);
-    let mut labels: Vec<u32> = Vec::with_capacity(n);
-    let mut next = 0u32;
-    let mut last: Option<K> = None;
-    for start in (0..n).step_by(LABEL_CHUNK) {
-        let keys: Vec<K> = (start..n.min(start + LABEL_CHUNK))
-            .into_par_iter()
-            .map(&key)
-            .collect();
-        for (j, k) in keys.iter().enumerate() {
-            let index = start + j;
-            let before = if j > 0 {
-                keys.get(j - 1)
-            } else {
-                last.as_ref()
-            };
-            if before == Some(k) {
-                labels.push(labels[index - 1]);
+    assert!(n < u32::MAX as usize, "items are numbered in 32 bits");
+    let starts: Vec<usize> = (0..n).step_by(LABEL_BLOCK).collect();
+    let blocks: Vec<Vec<u64>> = (starts.into_par_iter())
+        .map(|start| {
+            let mut keyed = Vec::new();
+            let mut last = None;
+            for item in start..n.min(start + LABEL_BLOCK) {
+                let k = key(item);
+                if last.as_ref() != Some(&k) {
+                    keyed.push(mixed(hash(&k)) >> 32 << 32 | item as u64);
+                }
+                last = Some(k);
+            }
+            keyed
+        })
+        .collect();
+    let mut keyed: Vec<u64> = Vec::with_capacity(blocks.iter().map(Vec::len).sum());
+    for block in blocks {
+        keyed.extend(block);
+    }
+    keyed.par_sort_unstable();
+    // Each run of one hash becomes (item, first item of its key) pairs, in place, in blocks
+    // of whole runs on all cores (rayon's `par_chunk_by_mut` made a task of every run: 20
+    // times slower on a million).
+    let same_hash = |a: &u64, b: &u64| a >> 32 == b >> 32;
+    let mut blocks: Vec<&mut [u64]> = Vec::new();
+    let mut rest: &mut [u64] = &mut keyed;
+    while !rest.is_empty() {
+        let mut end = LABEL_BLOCK.min(rest.len());
+        while end < rest.len() && same_hash(&rest[end - 1], &rest[end]) {
+            end += 1;
+        }
+        let (block, after) = std::mem::take(&mut rest).split_at_mut(end);
+        blocks.push(block);
+        rest = after;
+    }
+    blocks.into_par_iter().for_each(|block| {
+        for run in block.chunk_by_mut(same_hash) {
+            if let [only] = run {
+                let item = *only & u64::from(u32::MAX);
+                *only = item << 32 | item;
                 continue;
             }
-            let same = |&first: &u32| match (first as usize).checked_sub(start) {
-                Some(f) => keys[f] == *k,
-                None => key(first as usize) == *k,
-            };
-            let rehash = |&first: &u32| match (first as usize).checked_sub(start) {
-                Some(f) => hash(&keys[f]),
-                None => hash(&key(first as usize)),
-            };
-            let label = match first_of_key.entry(hash(k), same, rehash) {
-                hash_table::Entry::Occupied(e) => labels[*e.get() as usize],
-                hash_table::Entry::Vacant(e) => {
-                    e.insert(index as u32);
-                    next += 1;
-                    next - 1
-                }
-            };
-            labels.push(label);
+            // Items ascend within a run: the first item of each distinct key names it.
+            let mut distinct: Vec<(K, u64)> = Vec::new();
+            for e in run {
+                let item = *e & u64::from(u32::MAX);
+                let k = key(item as usize);
+                let named = match distinct.iter().find(|(d, _)| *d == k) {
+                    Some(&(_, f)) => f,
+                    None => {
+                        distinct.push((k, item));
+                        item
+                    }
+                };
+                *e = item << 32 | named;
+            }
         }
-        last = keys.into_iter().next_back();
+    });
+    // Per item, the first item with its key (itself when it is the first), or `u32::MAX`:
+    // the key of the item before it.
+    let mut first = vec![u32::MAX; n];
+    for &e in &keyed {
+        first[(e >> 32) as usize] = e as u32;
+    }
+    drop(keyed);
+    let mut labels: Vec<u32> = Vec::with_capacity(n);
+    let mut next = 0u32;
+    for (item, &f) in first.iter().enumerate() {
+        let label = match f as usize {
+            f if f == item => {
+                next += 1;
+                next - 1
+            }
+            f if f == u32::MAX as usize => labels[item - 1],
+            f => labels[f],
+        };
+        labels.push(label);
     }
     labels
 }
 
-/// Items whose keys [`labels_by_key`] computes at once: small next to the table.
-const LABEL_CHUNK: usize = 1 << 14;
+/// The bits of `h` mixed into its top 32 (splitmix64's finalizer, a bijection): FxHash's own
+/// top bits come from the low bits of a product, and collided on a curved surface's keys.
+fn mixed(mut h: u64) -> u64 {
+    h = (h ^ (h >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    h = (h ^ (h >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    h ^ (h >> 31)
+}
+
+/// Sorted items that [`labels_by_key`] groups in one task (whole runs of one hash).
+const LABEL_BLOCK: usize = 1 << 14;
 
 /// The outline of disjoint pieces (with their [`shared_vertices`]): the rings of their union,
 /// outer rings and holes, even-odd; merged as one group, so it too depends only on the point
@@ -1082,14 +1128,14 @@ pub(super) mod tests {
     }
 
     /// Labels by key are numbered by first appearance, equal exactly for equal keys, whatever
-    /// the hashes: with the real hash, with one that maps every key to a few values, and with
-    /// one value for all (the table then tells keys apart by comparing them alone). Over
-    /// several chunks of keys (keys of earlier chunks are computed again), with runs of one key.
+    /// the hashes: with the real hash, with one that maps every key to a few values (in the
+    /// 32 bits kept), and with one value for all (the keys are then told apart by comparing
+    /// them alone). With runs of one key.
     #[test]
     fn labels_by_key_are_by_key_whatever_the_hash_collides() {
         let mut state = 0x2545_f491_4f6c_dd1du64;
         let mut keys: Vec<(u8, [i64; 2])> = Vec::new();
-        while keys.len() < 2 * LABEL_CHUNK + 1000 {
+        while keys.len() < 40_000 {
             state ^= state << 13;
             state ^= state >> 7;
             state ^= state << 17;
@@ -1097,12 +1143,7 @@ pub(super) mod tests {
                 (state % 5) as u8,
                 [(state >> 8) as i64 % 7, (state >> 16) as i64 % 11],
             );
-            // Runs of one key, some across a chunk's end.
-            let run = if keys.len() % LABEL_CHUNK > LABEL_CHUNK - 5 {
-                9
-            } else {
-                1 + (state >> 40) as usize % 3
-            };
+            let run = 1 + (state >> 40) as usize % 3;
             keys.extend(std::iter::repeat_n(k, run));
         }
         let mut expected = Vec::new();
@@ -1114,7 +1155,7 @@ pub(super) mod tests {
         assert!(seen.len() > 100, "the keys repeat and differ");
         let key = |i: usize| keys[i];
         let real = labels_by_key(keys.len(), key, |k| FxBuildHasher.hash_one(k));
-        let few = labels_by_key(keys.len(), key, |k| FxBuildHasher.hash_one(k) % 3);
+        let few = labels_by_key(keys.len(), key, |k| (FxBuildHasher.hash_one(k) % 3) << 32);
         let one = labels_by_key(keys.len(), key, |_| 7);
         assert_eq!(real, expected);
         assert_eq!(few, expected);
