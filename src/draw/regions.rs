@@ -676,13 +676,65 @@ struct Edge {
 /// The regions of the union of `pieces[members]` (disjoint; `members` ascending), ordered by
 /// their outer rings' smallest vertex. See the module docs.
 fn merge(pieces: &[Piece], vertices: &Vertices, members: &[usize]) -> Vec<Merged> {
-    if let [only] = members {
+    let ring = match *members {
         // A strictly convex piece: every vertex is a corner.
-        return vec![Merged {
-            members: vec![*only],
-            rings: smallvec::smallvec![vertices.pixels[*only].to_vec()],
-        }];
+        [only] => Some(vertices.pixels[only].to_vec()),
+        // Two pieces sharing an edge whole (a quad's two triangles, a face cut once).
+        [a, b] => joined_ring(pieces, vertices, a, b),
+        _ => None,
+    };
+    match ring {
+        Some(ring) => vec![Merged {
+            members: members.to_vec(),
+            rings: smallvec::smallvec![ring],
+        }],
+        None => merge_boundaries(pieces, vertices, members),
     }
+}
+
+/// The ring of the union of disjoint pieces `a` and `b` when they share exactly one edge whole,
+/// with at least three corners; `None` otherwise. Each lies in its own closed half-plane of the
+/// shared edge's line and meets that line only along the edge, so they touch nowhere else: the
+/// ring is `a`'s vertices from the shared edge's end round to its start, then `b`'s others,
+/// without the two ends where the boundary goes straight on through them (decided exactly,
+/// as [`merge_boundaries`] decides them; every other vertex is a corner of a strictly convex
+/// piece).
+fn joined_ring(pieces: &[Piece], vertices: &Vertices, a: usize, b: usize) -> Option<Vec<[f64; 2]>> {
+    let mut shared = (vertices.partners_of(a).iter().enumerate())
+        .filter(|&(_, &p)| p as usize == b)
+        .map(|(k, _)| k);
+    let (Some(k), None) = (shared.next(), shared.next()) else {
+        return None;
+    };
+    let (ia, ib) = (&vertices.ids[a], &vertices.ids[b]);
+    let (na, nb) = (ia.len(), ib.len());
+    // b's edge j runs from a's vertex k + 1 to a's vertex k.
+    let j = (0..nb).find(|&j| ib[j] == ia[(k + 1) % na] && ib[(j + 1) % nb] == ia[k])?;
+    // Does vertex v of piece p lie on line l of piece q?
+    let on = |(p, v): (usize, usize), (q, l): (usize, usize)| {
+        let q = &pieces[q];
+        pieces[p].vertex_line_sign_with(v, q.line(l), &q.line_approx(l)) == Ordering::Equal
+    };
+    // At a's vertex k (b's j + 1) the boundary arrives along a's line k - 1 and leaves for b's
+    // vertex j + 2; at a's vertex k + 1 (b's j) it arrives along b's line j - 1 and leaves for
+    // a's vertex k + 2.
+    let (before_k, after_j) = ((k + na - 1) % na, (j + 2) % nb);
+    let straight_k = ib[after_j] != ia[before_k] && on((b, after_j), (a, before_k));
+    let (before_j, after_k) = ((j + nb - 1) % nb, (k + 2) % na);
+    let straight_k1 = ia[after_k] != ib[before_j] && on((a, after_k), (b, before_j));
+    let mut ring = Vec::with_capacity(na + nb - 2);
+    for v in (1..=na).map(|i| (k + i) % na) {
+        if !(v == k && straight_k || v == (k + 1) % na && straight_k1) {
+            ring.push(vertices.pixels[a][v]);
+        }
+    }
+    ring.extend((2..nb).map(|i| vertices.pixels[b][(j + i) % nb]));
+    (ring.len() >= 3).then_some(ring)
+}
+
+/// [`merge`] of any group: its boundary edges (T-junctions split, shared parts cancelled)
+/// walked into cycles.
+fn merge_boundaries(pieces: &[Piece], vertices: &Vertices, members: &[usize]) -> Vec<Merged> {
     let group = Group {
         pieces,
         vertices,
@@ -1271,6 +1323,63 @@ pub(super) mod tests {
     }
 
     /// `pieces` each cut by every line through two grid points in `cuts`.
+    /// `merge`'s regions and those of the boundary walk, each ring from its smallest point.
+    fn merged_both_ways(pieces: &[Piece]) -> [Vec<(Vec<usize>, Rings)>; 2] {
+        let vertices = shared_vertices(pieces, &grid_samples());
+        let all: Vec<usize> = (0..pieces.len()).collect();
+        let normal = |m: Vec<Merged>| -> Vec<(Vec<usize>, Rings)> {
+            (m.into_iter())
+                .map(|m| {
+                    let rings = (m.rings.into_iter())
+                        .map(|mut r| {
+                            let k = (0..r.len()).min_by(|&a, &b| cmp_points(&r[a], &r[b]));
+                            r.rotate_left(k.unwrap());
+                            r
+                        })
+                        .collect();
+                    (m.members, rings)
+                })
+                .collect()
+        };
+        [
+            normal(merge(pieces, &vertices, &all)),
+            normal(merge_boundaries(pieces, &vertices, &all)),
+        ]
+    }
+
+    proptest::proptest! {
+        /// Two triangles on either side of a common edge (often with a third corner on the
+        /// line of a side of the other, so that the boundary goes straight through an end of
+        /// the edge), and a triangle or a box cut once by a line: the joined ring is the
+        /// boundary walk's.
+        #[test]
+        fn two_pieces_sharing_an_edge_merge_as_the_boundary_walk_merges_them(
+            c in proptest::array::uniform4(proptest::array::uniform2(-5i64..5)),
+            cut_line in proptest::array::uniform2(proptest::array::uniform2(-6i64..6)),
+            boxed in proptest::array::uniform4(-6i64..6),
+        ) {
+            let [p, q, r, s] = c;
+            let turn = |a: [i64; 2], b: [i64; 2], c: [i64; 2]| {
+                (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+            };
+            let mut cases = Vec::new();
+            if turn(p, q, r) > 0 && turn(q, p, s) > 0 {
+                cases.push(vec![grid_piece(0, &[p, q, r]), grid_piece(1, &[q, p, s])]);
+            }
+            if turn(p, q, r) > 0 && cut_line[0] != cut_line[1] {
+                cases.push(cut(vec![grid_piece(0, &[p, q, r])], &[cut_line]));
+            }
+            let [x0, y0, x1, y1] = boxed;
+            if x0 < x1 && y0 < y1 && cut_line[0] != cut_line[1] {
+                cases.push(cut(vec![rect(0, boxed)], &[cut_line]));
+            }
+            for pieces in cases.into_iter().filter(|c| c.len() == 2) {
+                let [fast, walked] = merged_both_ways(&pieces);
+                proptest::prop_assert_eq!(fast, walked);
+            }
+        }
+    }
+
     fn cut(pieces: Vec<Piece>, cuts: &[[[i64; 2]; 2]]) -> Vec<Piece> {
         let g = |[x, y]: [i64; 2]| GridPoint { x, y, z: 0 };
         cuts.iter().fold(pieces, |pieces, &[a, b]| {
