@@ -397,6 +397,15 @@ fn under_layer(
 ) -> Vec<bool> {
     let layer: Vec<usize> = (0..list.len()).filter(|&k| blockers[k] == OPEN).collect();
     let grid = BoxGrid::holding(&layer.iter().map(|&k| boxes[k]).collect::<Vec<_>>());
+    // The layer's grid corners, found once in one flat list (each is tested against many):
+    // layer piece e's are `corners[start[e]..start[e + 1]]`, none when one is off the grid.
+    let (mut corners, mut start) = (Vec::new(), Vec::with_capacity(layer.len() + 1));
+    start.push(0);
+    for &k in &layer {
+        corners.extend(list[k].grid_corners().into_iter().flatten());
+        start.push(corners.len());
+    }
+    let corners_of = |e: usize| Some(&corners[start[e]..start[e + 1]]).filter(|c| !c.is_empty());
     // Per layer piece, the last piece of the rest that met it (a box lies in several cells):
     // `covered` takes the fronts in any order, so they need no sort.
     let mut seen = vec![usize::MAX; layer.len()];
@@ -412,7 +421,7 @@ fn under_layer(
                 let (e, j) = (e as usize, layer[e as usize]);
                 if seen[e] != k
                     && overlap(&boxes[j], &boxes[k])
-                    && !outline.separated_from(screen, &list[j])
+                    && !outline.separated_from_with(screen, &list[j], corners_of(e))
                 {
                     fronts.push(&list[j]);
                 }

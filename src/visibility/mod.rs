@@ -217,12 +217,34 @@ impl<'p> Outline<'p> {
 
     /// [`separated_on`] of the piece and `q`.
     pub(crate) fn separated_from(&self, screen: &ScreenScene, q: &Piece) -> bool {
-        use crate::exact::polygon::{corners_separated, separated_by_lines};
         if let Some(a) = &self.corners
             && let Some(b) = q.grid_corners()
         {
-            return corners_separated(a, &b);
+            return crate::exact::polygon::corners_separated(a, &b);
         }
+        self.separated_off_corners(screen, q)
+    }
+
+    /// [`Self::separated_from`] with `q`'s [`Piece::grid_corners`] found already (for pieces
+    /// tested against many).
+    pub(crate) fn separated_from_with(
+        &self,
+        screen: &ScreenScene,
+        q: &Piece,
+        q_corners: Option<&[[i64; 2]]>,
+    ) -> bool {
+        if let Some(a) = &self.corners
+            && let Some(b) = q_corners
+        {
+            return crate::exact::polygon::corners_separated(a, b);
+        }
+        self.separated_off_corners(screen, q)
+    }
+
+    /// Separation when a vertex of either is off the grid: their faces' triangles apart, or a
+    /// line of one with the other wholly on its outer side.
+    fn separated_off_corners(&self, screen: &ScreenScene, q: &Piece) -> bool {
+        use crate::exact::polygon::{corners_separated, separated_by_lines};
         let own = *self
             .triangle
             .get_or_init(|| screen.triangle_xy(self.piece.poly));
