@@ -217,12 +217,7 @@ impl<'p> Outline<'p> {
 
     /// [`separated_on`] of the piece and `q`.
     pub(crate) fn separated_from(&self, screen: &ScreenScene, q: &Piece) -> bool {
-        if let Some(a) = &self.corners
-            && let Some(b) = q.grid_corners()
-        {
-            return crate::exact::polygon::corners_separated(a, &b);
-        }
-        self.separated_off_corners(screen, q)
+        self.separated_from_with(screen, q, q.grid_corners().as_deref())
     }
 
     /// [`Self::separated_from`] with `q`'s [`Piece::grid_corners`] found already (for pieces
@@ -233,23 +228,33 @@ impl<'p> Outline<'p> {
         q: &Piece,
         q_corners: Option<&[[i64; 2]]>,
     ) -> bool {
+        use crate::exact::polygon::{corners_separated, separated_by_lines};
         if let Some(a) = &self.corners
             && let Some(b) = q_corners
         {
-            return crate::exact::polygon::corners_separated(a, b);
+            return corners_separated(a, b);
         }
-        self.separated_off_corners(screen, q)
-    }
-
-    /// Separation when a vertex of either is off the grid: their faces' triangles apart, or a
-    /// line of one with the other wholly on its outer side.
-    fn separated_off_corners(&self, screen: &ScreenScene, q: &Piece) -> bool {
-        use crate::exact::polygon::{corners_separated, separated_by_lines};
-        let own = *self
-            .triangle
-            .get_or_init(|| screen.triangle_xy(self.piece.poly));
-        let faces = own.zip(screen.triangle_xy(q.poly));
-        faces.is_some_and(|(a, b)| corners_separated(&a, &b)) || separated_by_lines(self.piece, q)
+        // A piece with a vertex off the grid lies within its face's triangle: outlines (the
+        // exact corners where known, else the triangle) that lie apart hold pieces apart. Else
+        // a line of one with the other wholly on its outer side decides.
+        let own = match &self.corners {
+            Some(c) => Some(&c[..]),
+            None => (self.triangle)
+                .get_or_init(|| screen.triangle_xy(self.piece.poly))
+                .as_ref()
+                .map(|t| &t[..]),
+        };
+        let their_triangle;
+        let theirs = match q_corners {
+            Some(c) => Some(c),
+            None => {
+                their_triangle = screen.triangle_xy(q.poly);
+                their_triangle.as_ref().map(|t| &t[..])
+            }
+        };
+        own.zip(theirs)
+            .is_some_and(|(a, b)| corners_separated(a, b))
+            || separated_by_lines(self.piece, q)
     }
 }
 
