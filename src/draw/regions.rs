@@ -28,6 +28,10 @@
 //!   is the cycle holding its smallest vertex (y, then x, in pixels): the top of a region lies
 //!   on its outer boundary. A region lists the faces of its pieces and is painted by the piece
 //!   of its smallest (face id, polygon).
+//! - **Shortcuts** with the same result: a group of one piece is its ring; a group of two
+//!   pieces sharing exactly one edge whole (a quad's two triangles, a face cut once) is one
+//!   piece's ring joined to the other's, the edge's ends dropped where the boundary goes
+//!   straight through them (the same exact test).
 
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
