@@ -842,15 +842,19 @@ impl Group<'_> {
         debug_assert!(members.is_sorted(), "members ascend");
         let mut components = UnionFind::new(members.len());
         // Edge k of member i is edge first[i] + k of the group; whole: shared whole with
-        // another member (found by bisection: members ascend).
+        // another member (found by bisection: members ascend; all the pieces, as the outline
+        // merges them, are each their own place).
+        let all = members.len() == pieces.len();
         let mut first = Vec::with_capacity(members.len() + 1);
         let mut whole = Vec::new();
         for (i, &m) in members.iter().enumerate() {
             first.push(whole.len());
             for &b in self.vertices.partners_of(m) {
-                let j = (b != Vertices::ALONE)
-                    .then(|| members.binary_search(&(b as usize)).ok())
-                    .flatten();
+                let j = match b as usize {
+                    _ if b == Vertices::ALONE => None,
+                    b if all => Some(b),
+                    b => members.binary_search(&b).ok(),
+                };
                 if let Some(j) = j {
                     components.union(i, j);
                 }
