@@ -33,6 +33,8 @@ use crate::project::ScreenScene;
 use crate::scene::Scene;
 use crate::visibility::{Fragment, Stats, Strategy, VisibleSet, pixel_ring};
 use regions::{Vertices, outline, regions, regions_into, shared_vertices, surfaces};
+use rustc_hash::FxHashMap;
+use std::cmp::Ordering;
 
 /// How a visible set is drawn.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -231,8 +233,9 @@ pub fn draw(
 }
 
 /// The boundaries that opaque pieces of different groups share, stroked in the darker of the
-/// two colours (8-bit, then the smaller), one [`SeamStroke`] per colour in colour order, each
-/// segment a maximal straight run of its colour ([`seams::straight_runs`]).
+/// two colours (8-bit, then exactly), one [`SeamStroke`] per 8-bit colour (in the least exact
+/// colour its edges have) in colour order, each segment a maximal straight run of its colour
+/// ([`seams::straight_runs`]).
 fn seam_strokes(
     pieces: &[Piece],
     vertices: &Vertices,
@@ -241,9 +244,18 @@ fn seam_strokes(
 ) -> Vec<SeamStroke> {
     use rayon::prelude::*;
     let shared = seams::shared_edges(pieces, vertices, |i| group(&pieces[i]));
-    let key = |c: [f64; 3]| {
-        let u = to_u8(c);
-        (u.iter().map(|&v| v as u32).sum::<u32>(), u)
+    // Colours by their 8-bit value (its sum, then its channels), then exactly: the darker of
+    // an edge's two, and the least of a stroke's, whatever the order the pieces come in.
+    let exactly = |x: &[f64; 3], y: &[f64; 3]| {
+        let mut by_channel = x.iter().zip(y.iter()).map(|(a, b)| a.total_cmp(b));
+        by_channel.find(|o| o.is_ne()).unwrap_or(Ordering::Equal)
+    };
+    let darker = |x: &[f64; 3], y: &[f64; 3]| {
+        let key = |c: &[f64; 3]| {
+            let u = to_u8(*c);
+            (u.iter().map(|&v| v as u32).sum::<u32>(), u)
+        };
+        key(x).cmp(&key(y)).then_with(|| exactly(x, y))
     };
     // Per edge, the colour it is stroked in. Colours per piece first: read per edge, they
     // cost two cache misses into the pieces each. (Not kept per edge: 24 bytes an edge beside
@@ -251,40 +263,68 @@ fn seam_strokes(
     let piece_color: Vec<[f64; 3]> = pieces.iter().map(color).collect();
     let stroked = |e: &seams::SharedEdge| {
         let [ca, cb] = e.pieces.map(|i| piece_color[i as usize]);
-        if key(cb) < key(ca) { cb } else { ca }
+        if darker(&cb, &ca).is_lt() { cb } else { ca }
+    };
+    // Faces of one 8-bit colour may differ below it: a stroke takes the least. Found as the
+    // edges are ordered, where their colours are read in edge order (read again per colour,
+    // they cost a cache miss an edge).
+    let keep_least = |least_of: &mut FxHashMap<u64, [f64; 3]>, rgb, c: [f64; 3]| {
+        let least = least_of.entry(rgb).or_insert(c);
+        if exactly(&c, least).is_lt() {
+            *least = c;
+        }
     };
     // The edges by 8-bit colour, each colour's in edge order: the colour in the top 24 bits of
     // a sort key, the edge's index below it.
+    let mut least_of: FxHashMap<u64, [f64; 3]> = FxHashMap::default();
     let mut order: Vec<u64> = (shared.iter().enumerate())
         .map(|(e, edge)| {
-            let [r, g, b] = to_u8(stroked(edge)).map(u64::from);
-            r << 56 | g << 48 | b << 40 | e as u64
+            let c = stroked(edge);
+            let [r, g, b] = to_u8(c).map(u64::from);
+            let rgb = r << 16 | g << 8 | b;
+            keep_least(&mut least_of, rgb, c);
+            rgb << 40 | e as u64
         })
         .collect();
     order.sort_unstable();
     let edge = |k: &u64| (k & ((1 << 40) - 1)) as usize;
-    // Faces of one 8-bit colour may differ below it: a stroke takes the least, whatever the
-    // order the pieces come in (the canonical form sorts strokes by it).
-    let least = |x: &[f64; 3], y: &[f64; 3]| {
-        x.iter()
-            .zip(y.iter())
-            .map(|(a, b)| a.total_cmp(b))
-            .find(|o| o.is_ne())
-            .unwrap_or(std::cmp::Ordering::Equal)
-    };
     let by_color: Vec<&[u64]> = order.chunk_by(|a, b| a >> 40 == b >> 40).collect();
     // Colour by colour on all cores (a mesh shaded flat has hundreds), in colour order.
     by_color
         .into_par_iter()
         .map(|run| {
-            let colors = run.iter().map(|k| stroked(&shared[edge(k)]));
             let edges: Vec<&seams::SharedEdge> = run.iter().map(|k| &shared[edge(k)]).collect();
             SeamStroke {
-                color: colors
-                    .min_by(|x, y| least(x, y))
-                    .expect("a colour has edges"),
+                color: least_of[&(run[0] >> 40)],
                 segments: seams::straight_runs(&edges, pieces, vertices),
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::regions::tests::{grid_piece, grid_samples};
+    use super::*;
+
+    /// Three squares in a row, A | B | C, each its own group: A and B of one 8-bit colour a
+    /// little apart below it, C lighter. Both seams are stroked in that 8-bit colour, in the
+    /// smaller of A's and B's exact colours, whichever order the pieces come in (an edge
+    /// between equal 8-bit colours once took its first piece's).
+    #[test]
+    fn a_seam_stroke_takes_the_least_exact_colour_whatever_the_piece_order() {
+        let square =
+            |poly: u32, x: i64| grid_piece(poly, &[[x, 0], [x + 4, 0], [x + 4, 4], [x, 4]]);
+        let exact = [[0.5, 0.5, 0.5], [0.5 + 1e-6, 0.5, 0.5], [0.9, 0.9, 0.9]];
+        assert_eq!(to_u8(exact[0]), to_u8(exact[1]));
+        for order in [[0, 1, 2], [2, 1, 0], [1, 0, 2], [1, 2, 0]] {
+            let pieces: Vec<Piece> = order.iter().map(|&p| square(p, 4 * p as i64)).collect();
+            let vertices = shared_vertices(&pieces, &grid_samples());
+            let strokes =
+                seam_strokes(&pieces, &vertices, &|p| p.poly, &|p| exact[p.poly as usize]);
+            assert_eq!(strokes.len(), 1, "{order:?}");
+            assert_eq!(strokes[0].color, exact[0], "{order:?}");
+            assert_eq!(strokes[0].segments.len(), 2, "{order:?}");
+        }
+    }
 }
