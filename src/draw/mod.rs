@@ -268,36 +268,55 @@ fn seam_strokes(
     // Faces of one 8-bit colour may differ below it: a stroke takes the least. Found as the
     // edges are ordered, where their colours are read in edge order (read again per colour,
     // they cost a cache miss an edge).
-    let keep_least = |least_of: &mut FxHashMap<u64, [f64; 3]>, rgb, c: [f64; 3]| {
+    let keep_least = |least_of: &mut FxHashMap<u32, [f64; 3]>, rgb, c: [f64; 3]| {
         let least = least_of.entry(rgb).or_insert(c);
         if exactly(&c, least).is_lt() {
             *least = c;
         }
     };
-    // The edges by 8-bit colour, each colour's in edge order: the colour in the top 24 bits of
-    // a sort key, the edge's index below it.
-    let mut least_of: FxHashMap<u64, [f64; 3]> = FxHashMap::default();
-    let mut order: Vec<u64> = (shared.iter().enumerate())
-        .map(|(e, edge)| {
+    // The edges by 8-bit colour, each colour's in edge order, read once in edge order
+    // ([`seams::StrokeSegment`]) and placed in colour order (a counting sort: each stroke's
+    // segments are then one stretch of memory).
+    let mut least_of: FxHashMap<u32, [f64; 3]> = FxHashMap::default();
+    // Each edge's 8-bit colour, then its place among the colours in order.
+    let mut color_of: Vec<u32> = (shared.iter())
+        .map(|edge| {
             let c = stroked(edge);
-            let [r, g, b] = to_u8(c).map(u64::from);
+            let [r, g, b] = to_u8(c).map(u32::from);
             let rgb = r << 16 | g << 8 | b;
             keep_least(&mut least_of, rgb, c);
-            rgb << 40 | e as u64
+            rgb
         })
         .collect();
-    order.sort_unstable();
-    let edge = |k: &u64| (k & ((1 << 40) - 1)) as usize;
-    let by_color: Vec<&[u64]> = order.chunk_by(|a, b| a >> 40 == b >> 40).collect();
+    let mut colors: Vec<(u32, [f64; 3])> = least_of.into_iter().collect();
+    colors.sort_unstable_by_key(|&(rgb, _)| rgb);
+    let place: FxHashMap<u32, usize> = (colors.iter().enumerate())
+        .map(|(i, &(rgb, _))| (rgb, i))
+        .collect();
+    for c in &mut color_of {
+        *c = place[&*c] as u32;
+    }
+    // Per colour, where its next segment goes: from the start of its stretch on.
+    let mut next = vec![0; colors.len()];
+    for &c in &color_of {
+        next[c as usize] += 1;
+    }
+    let mut stretches = Vec::with_capacity(colors.len());
+    let mut start = 0;
+    for n in &mut next {
+        stretches.push(start..start + *n);
+        (start, *n) = (start + *n, start);
+    }
+    let mut segments = vec![seams::StrokeSegment::default(); shared.len()];
+    for (e, (edge, c)) in shared.iter().zip(color_of).enumerate() {
+        segments[next[c as usize]] = edge.segment(e, vertices);
+        next[c as usize] += 1;
+    }
     // Colour by colour on all cores (a mesh shaded flat has hundreds), in colour order.
-    by_color
-        .into_par_iter()
-        .map(|run| {
-            let edges: Vec<&seams::SharedEdge> = run.iter().map(|k| &shared[edge(k)]).collect();
-            SeamStroke {
-                color: least_of[&(run[0] >> 40)],
-                segments: seams::straight_runs(&edges, pieces, vertices),
-            }
+    (colors.into_par_iter().zip(stretches))
+        .map(|((_, color), stretch)| SeamStroke {
+            color,
+            segments: seams::straight_runs(&segments[stretch], &shared, pieces),
         })
         .collect()
 }

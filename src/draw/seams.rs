@@ -45,6 +45,29 @@ impl SharedEdge {
         self.vertices
             .map(|(p, v)| vertices.pixels[p as usize][v as usize])
     }
+
+    /// This edge, number `edge` of its list, as a stroke reads it ([`StrokeSegment`]).
+    pub fn segment(&self, edge: usize, vertices: &Vertices) -> StrokeSegment {
+        StrokeSegment {
+            ids: (self.vertices).map(|(p, v)| vertices.ids[p as usize][v as usize]),
+            ends: self.ends(vertices),
+            edge: edge as u32,
+        }
+    }
+}
+
+/// A shared edge as [`straight_runs`] reads it: its ends' vertex ids and pixels, read once
+/// (in edge order, where they are near each other in memory: read per stroke, each cost two
+/// cache misses), and its number in the list of [`SharedEdge`]s for the exact tests where
+/// segments meet.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StrokeSegment {
+    /// The ends' exact vertex ids ([`Vertices::ids`]).
+    pub ids: [u32; 2],
+    /// The ends in pixels ([`SharedEdge::ends`]).
+    pub ends: [[f64; 2]; 2],
+    /// Its [`SharedEdge`]'s index.
+    pub edge: u32,
 }
 
 /// The boundary segments shared by pieces of different groups (`group(i)` of piece i), in
@@ -116,62 +139,77 @@ pub fn shared_edges(
     out
 }
 
-/// `edges` (of one stroke) with the segments that continue each other joined: two segments
-/// meeting at an exact vertex, the other end of one exactly on the other's kernel line, are one
-/// run, drawn as the union of its segments along the line. Pieces cut a boundary at points of
-/// their own (the BSP's screen splits, the coverage map's splits); joined, the segments are
-/// the maximal straight runs of the point set the edges cover, whatever the cut. `vertices`
-/// are the pieces' [`Vertices`], which the edges were found with.
+/// `segments` (of one stroke; [`SharedEdge::segment`]s of `edges`) with the segments that
+/// continue each other joined: two segments meeting at an exact vertex, the other end of one
+/// exactly on the other's kernel line, are one run, drawn as the union of its segments along
+/// the line. Pieces cut a boundary at points of their own (the BSP's screen splits, the
+/// coverage map's splits); joined, the segments are the maximal straight runs of the point set
+/// the edges cover, whatever the cut.
 pub fn straight_runs(
-    edges: &[&SharedEdge],
+    segments: &[StrokeSegment],
+    edges: &[SharedEdge],
     pieces: &[Piece],
-    vertices: &Vertices,
 ) -> Vec<[[f64; 2]; 2]> {
-    let id = |(p, v): (u32, u32)| vertices.ids[p as usize][v as usize];
-    // Every segment end, by vertex id.
-    let mut ends: Vec<(u32, usize, usize)> = edges
-        .iter()
-        .enumerate()
-        .flat_map(|(s, e)| [(id(e.vertices[0]), s, 0), (id(e.vertices[1]), s, 1)])
+    // Every segment end as (vertex id, segment, end) in one sortable word: by vertex id.
+    let mut ends: Vec<u64> = (segments.iter().enumerate())
+        .flat_map(|(s, g)| [0, 1].map(|end| u64::from(g.ids[end]) << 32 | (s << 1 | end) as u64))
         .collect();
     ends.sort_unstable();
-    let mut runs = UnionFind::new(edges.len());
-    for meeting in ends.chunk_by(|a, b| a.0 == b.0) {
-        for (i, &(_, s, _)) in meeting.iter().enumerate() {
+    let (segment_of, end_of) = (|e: u64| (e as u32 >> 1) as usize, |e: u64| (e & 1) as usize);
+    let edge = |s: usize| &edges[segments[s].edge as usize];
+    let mut runs = UnionFind::new(segments.len());
+    let mut joined = false;
+    for meeting in ends.chunk_by(|a, b| a >> 32 == b >> 32) {
+        for (i, &e) in meeting.iter().enumerate() {
             if i + 1 == meeting.len() {
                 break;
             }
             // Segment s's line, approximated once for every later segment at this point.
-            let (lp, l) = edges[s].line;
+            let (lp, l) = edge(segment_of(e)).line;
             let (lp, l) = (lp as usize, l as usize);
             let (line, approx) = (pieces[lp].line(l), pieces[lp].line_approx(l));
-            for &(_, t, end) in &meeting[i + 1..] {
-                let (fp, fv) = edges[t].vertices[1 - end];
+            for &f in &meeting[i + 1..] {
+                let (fp, fv) = edge(segment_of(f)).vertices[1 - end_of(f)];
                 let (fp, fv) = (fp as usize, fv as usize);
                 if pieces[fp].vertex_line_sign_with(fv, line, &approx) == Ordering::Equal {
-                    runs.union(s, t);
+                    runs.union(segment_of(e), segment_of(f));
+                    joined = true;
                 }
             }
         }
     }
-    let mut order: Vec<(usize, usize)> = (0..edges.len()).map(|s| (runs.find(s), s)).collect();
+    drop(ends);
+    let mut out = Vec::with_capacity(segments.len());
+    let mut run: Vec<[[f64; 2]; 2]> = Vec::new();
+    if !joined {
+        // Every segment a run of its own (most strokes): in segment order, as below.
+        for g in segments {
+            run.clear();
+            run.push(g.ends);
+            union_along_line(&mut run, &mut out);
+        }
+        return out;
+    }
+    // Runs by their root, each in segment order.
+    let mut order: Vec<u64> = (0..segments.len())
+        .map(|s| (runs.find(s) as u64) << 32 | s as u64)
+        .collect();
     order.sort_unstable();
-    let mut out = Vec::with_capacity(edges.len());
-    for run in order.chunk_by(|a, b| a.0 == b.0) {
+    for members in order.chunk_by(|a, b| a >> 32 == b >> 32) {
         // A path of segments along one line, or segments overlapping on it (two strategies cut
         // one boundary into different parts): their union, whatever the cut.
-        out.extend(union_along_line(
-            run.iter().map(|&(_, s)| edges[s].ends(vertices)),
-        ));
+        run.clear();
+        run.extend(members.iter().map(|&m| segments[m as u32 as usize].ends));
+        union_along_line(&mut run, &mut out);
     }
     out
 }
 
-/// The union of collinear segments (pixels, each end rounded once from an exact vertex) as
-/// maximal segments, ordered along the line by their coordinate on its longer axis: an output
-/// canonicalization of overlapping runs, on the rounded ends (equal bits are one point).
-fn union_along_line(segments: impl Iterator<Item = [[f64; 2]; 2]>) -> Vec<[[f64; 2]; 2]> {
-    let mut segments: Vec<[[f64; 2]; 2]> = segments.collect();
+/// The union of collinear `segments` (pixels, each end rounded once from an exact vertex) as
+/// maximal segments, appended to `out` in order along the line by their coordinate on its
+/// longer axis: an output canonicalization of overlapping runs, on the rounded ends (equal
+/// bits are one point). `segments` is left reordered.
+fn union_along_line(segments: &mut [[[f64; 2]; 2]], out: &mut Vec<[[f64; 2]; 2]>) {
     // The line's direction from its longest segment: a short one may round to a point, or to
     // two points differing in one coordinate only, which says nothing of the line.
     let extent = |s: &[[f64; 2]; 2]| (s[1][0] - s[0][0]).abs().max((s[1][1] - s[0][1]).abs());
@@ -179,7 +217,7 @@ fn union_along_line(segments: impl Iterator<Item = [[f64; 2]; 2]>) -> Vec<[[f64;
         .iter()
         .max_by(|a, b| extent(a).total_cmp(&extent(b)))
     else {
-        return Vec::new();
+        return;
     };
     let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
     let axis = usize::from(dy.abs() > dx.abs());
@@ -188,7 +226,7 @@ fn union_along_line(segments: impl Iterator<Item = [[f64; 2]; 2]>) -> Vec<[[f64;
     let other = if dx * dy < 0.0 { -1.0 } else { 1.0 };
     let key = |v: &[f64; 2]| (v[axis], other * v[1 - axis]);
     let before = |a: &[f64; 2], b: &[f64; 2]| key(a).partial_cmp(&key(b)) == Some(Ordering::Less);
-    for s in &mut segments {
+    for s in segments.iter_mut() {
         if before(&s[1], &s[0]) {
             s.swap(0, 1);
         }
@@ -198,9 +236,9 @@ fn union_along_line(segments: impl Iterator<Item = [[f64; 2]; 2]>) -> Vec<[[f64;
             .partial_cmp(&key(&b[0]))
             .unwrap_or(Ordering::Equal)
     });
-    let mut out: Vec<[[f64; 2]; 2]> = Vec::new();
-    for s in segments {
-        match out.last_mut() {
+    let first = out.len();
+    for &s in segments.iter() {
+        match out[first..].last_mut() {
             Some(last) if !before(&last[1], &s[0]) => {
                 if before(&last[1], &s[1]) {
                     last[1] = s[1];
@@ -209,7 +247,6 @@ fn union_along_line(segments: impl Iterator<Item = [[f64; 2]; 2]>) -> Vec<[[f64;
             _ => out.push(s),
         }
     }
-    out
 }
 
 /// The segment of positive length that edge k of piece `a` (index `ia`) shares with an edge of
@@ -264,16 +301,22 @@ fn shared_part(
 mod tests {
     use super::*;
 
+    /// [`union_along_line`] of `segments` alone.
+    fn union_of(segments: impl Iterator<Item = [[f64; 2]; 2]>) -> Vec<[[f64; 2]; 2]> {
+        let (mut segments, mut out): (Vec<_>, _) = (segments.collect(), Vec::new());
+        union_along_line(&mut segments, &mut out);
+        out
+    }
+
     #[test]
     fn overlapping_collinear_seams_are_drawn_as_their_union() {
         let seg = |a: f64, b: f64| [[a, 2.0 * a], [b, 2.0 * b]];
         // The same boundary cut two ways, with a repeated part: one segment.
-        let got = union_along_line(
-            [seg(0.0, 1.0), seg(3.0, 1.0), seg(1.0, 3.0), seg(2.0, 4.0)].into_iter(),
-        );
+        let got =
+            union_of([seg(0.0, 1.0), seg(3.0, 1.0), seg(1.0, 3.0), seg(2.0, 4.0)].into_iter());
         assert_eq!(got, vec![seg(0.0, 4.0)]);
         // Apart: two segments, in order along the line.
-        let got = union_along_line([seg(5.0, 6.0), seg(0.0, 1.0)].into_iter());
+        let got = union_of([seg(5.0, 6.0), seg(0.0, 1.0)].into_iter());
         assert_eq!(got, vec![seg(0.0, 1.0), seg(5.0, 6.0)]);
     }
 
@@ -287,17 +330,14 @@ mod tests {
         let long = [[0.0, 2.0], end];
         let tiny = [end, beyond];
         let whole = vec![[[0.0, 2.0], beyond]];
-        assert_eq!(union_along_line([long, tiny].into_iter()), whole);
-        assert_eq!(union_along_line([tiny, long].into_iter()), whole);
-        assert_eq!(
-            union_along_line([[end, [0.0, 2.0]], tiny].into_iter()),
-            whole
-        );
+        assert_eq!(union_of([long, tiny].into_iter()), whole);
+        assert_eq!(union_of([tiny, long].into_iter()), whole);
+        assert_eq!(union_of([[end, [0.0, 2.0]], tiny].into_iter()), whole);
         // Where y grows with x, the part beyond has the larger y.
         let beyond = [2.0, f64::from_bits(1.0f64.to_bits() + 1)];
         let whole = vec![[[0.0, 0.0], beyond]];
         assert_eq!(
-            union_along_line([[[0.0, 0.0], end], [end, beyond]].into_iter()),
+            union_of([[[0.0, 0.0], end], [end, beyond]].into_iter()),
             whole
         );
     }
@@ -372,8 +412,10 @@ mod tests {
     fn runs(pieces: &[Piece], group: impl Fn(usize) -> u32) -> Vec<[[f64; 2]; 2]> {
         let vertices = shared_vertices(pieces, &grid_samples());
         let edges = shared_edges(pieces, &vertices, group);
-        let edges: Vec<&SharedEdge> = edges.iter().collect();
-        let mut out: Vec<[[f64; 2]; 2]> = straight_runs(&edges, pieces, &vertices)
+        let segments: Vec<StrokeSegment> = (edges.iter().enumerate())
+            .map(|(i, e)| e.segment(i, &vertices))
+            .collect();
+        let mut out: Vec<[[f64; 2]; 2]> = straight_runs(&segments, &edges, pieces)
             .into_iter()
             .map(|e| {
                 let mut e = e.map(to_grid);
