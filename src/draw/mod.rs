@@ -316,7 +316,7 @@ fn seam_strokes(
     (colors.into_par_iter().zip(stretches))
         .map(|((_, color), stretch)| SeamStroke {
             color,
-            segments: seams::straight_runs(&segments[stretch], &shared, pieces),
+            segments: seams::straight_runs(&segments[stretch], &shared, pieces, vertices),
         })
         .collect()
 }

@@ -332,6 +332,9 @@ pub struct Vertices {
     /// [`Vertices::ALONE`]; flat, in the order of `ids` (edge k of piece a is number
     /// `ids.first(a) + k`). Found once for the regions, the outline and the seams alike.
     pub partners: Vec<u32>,
+    /// A bound on how far each pixel coordinate lies from its exact point's: f64 tests on
+    /// the pixels that clear it by their own error decide exactly ([`surely_off_line`]).
+    pub pixel_error: f64,
 }
 
 impl Vertices {
@@ -446,8 +449,10 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
         pixels: PerVertex::with_capacity(pieces.len(), vertex_count),
         ids: PerVertex::with_capacity(pieces.len(), vertex_count),
         partners: Vec::new(),
+        pixel_error: 0.0,
     };
     let mut next = 0u32;
+    let mut largest = 0.0f64;
     // One piece's named vertices and the ones named first here that are no grid points
     // (reused: the piece is pushed whole once named, since the tables read only the pieces
     // before it).
@@ -487,7 +492,9 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
                     }
                     None => new_off_grid.push(k),
                 }
-                (vertex_pixel(pa, k, s), next - 1)
+                let p = vertex_pixel(pa, k, s);
+                largest = largest.max(p[0].abs()).max(p[1].abs());
+                (p, next - 1)
             });
             pixels.push(p);
             ids.push(id);
@@ -500,7 +507,34 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
         out.ids.push_piece(ids.iter().copied());
     }
     out.partners = edge_partners(&out.ids);
+    out.pixel_error = pixel_error(s, largest);
     out
+}
+
+/// A bound on the error of [`vertex_pixel`]'s coordinates, each at most `largest` in size.
+/// The grid point errs by half an ulp (correctly rounded) or by [`Piece::POINT_ERROR_MAX`]
+/// (2^16 units; the fallback when no rounding is made); a grid unit is W 2^-53 pixels, so
+/// that is W 2^-37 pixels at most; the three roundings of the map to pixels and the half ulp
+/// add at most 2^-51 (|p| + W). Each term is taken twice over.
+fn pixel_error(s: &Samples, largest: f64) -> f64 {
+    debug_assert_eq!(Piece::POINT_ERROR_MAX, 65536.0);
+    let size = (s.width + s.height) as f64;
+    size * 2f64.powi(-36) + (largest + size) * 2f64.powi(-50)
+}
+
+/// Whether `c` surely lies off the line through `a` and `b`, decided in f64 on pixels that
+/// each lie within `error` (per coordinate) of their exact points: the orientation clears the
+/// bound of both its rounding and the points' errors. `false` decides nothing.
+pub fn surely_off_line(a: [f64; 2], b: [f64; 2], c: [f64; 2], error: f64) -> bool {
+    let (u, v) = ([b[0] - a[0], b[1] - a[1]], [c[0] - a[0], c[1] - a[1]]);
+    let (uv, vu) = (u[0] * v[1], u[1] * v[0]);
+    // Moving each point by `error` per coordinate moves each difference by 2 error and the
+    // cross product by 2 error (|u| + |v|) + 8 error^2 (1-norms); its f64 evaluation errs by
+    // less than 2^-51 (|uv| + |vu|) (Shewchuk's orient2d bound, the differences' rounding
+    // included). Each taken twice over.
+    let moved = 4.0 * error * (u[0].abs() + u[1].abs() + v[0].abs() + v[1].abs() + 4.0 * error);
+    let rounding = 2f64.powi(-50) * (uv.abs() + vu.abs());
+    (uv - vu).abs() > moved + rounding
 }
 
 /// [`Vertices::partners`] of pieces with vertex ids `ids`: the edges that run between the same
@@ -1330,7 +1364,6 @@ pub(super) mod tests {
         assert_eq!(merged(&strips)[0].0, vec![0, 1, 2]);
     }
 
-    /// `pieces` each cut by every line through two grid points in `cuts`.
     /// `merge`'s regions and those of the boundary walk, each ring from its smallest point.
     fn merged_both_ways(pieces: &[Piece]) -> [Vec<(Vec<usize>, Rings)>; 2] {
         let vertices = shared_vertices(pieces, &grid_samples());
@@ -1353,6 +1386,33 @@ pub(super) mod tests {
             normal(merge(pieces, &vertices, &all)),
             normal(merge_boundaries(pieces, &vertices, &all)),
         ]
+    }
+
+    proptest::proptest! {
+        /// Three points exactly on a line, each moved by up to `error` in each coordinate
+        /// (to the corners of that box, where the orientation moves most): never surely off
+        /// the line. Points clearly off it are.
+        #[test]
+        fn points_moved_within_the_error_from_a_line_are_never_surely_off_it(
+            a in proptest::array::uniform2(-2000i32..2000),
+            d in proptest::array::uniform2(-2000i32..2000),
+            k in -3i32..4,
+            moves in proptest::array::uniform6(-1i32..=1),
+            error_bits in 0i32..40,
+        ) {
+            proptest::prop_assume!(d != [0, 0] && k != 0 && k != 1);
+            // A power of two: every moved coordinate (below 2^14) is exact.
+            let error = 2f64.powi(-error_bits);
+            let on = |t: i32| [0, 1].map(|i| f64::from(a[i] + t * d[i]));
+            let moved = |t: i32, m: usize| {
+                [0, 1].map(|i| on(t)[i] + f64::from(moves[m + i]) * error)
+            };
+            let (p, q, r) = (moved(0, 0), moved(1, 2), moved(k, 4));
+            proptest::prop_assert!(!surely_off_line(p, q, r, error));
+            // A unit or more off the line (across d).
+            let off = [on(k)[0] - f64::from(d[1]), on(k)[1] + f64::from(d[0])];
+            proptest::prop_assert!(surely_off_line(on(0), on(1), off, 1e-3));
+        }
     }
 
     proptest::proptest! {
@@ -1388,7 +1448,8 @@ pub(super) mod tests {
         }
     }
 
-    fn cut(pieces: Vec<Piece>, cuts: &[[[i64; 2]; 2]]) -> Vec<Piece> {
+    /// `pieces` each cut by every line through two grid points in `cuts`.
+    pub(in crate::draw) fn cut(pieces: Vec<Piece>, cuts: &[[[i64; 2]; 2]]) -> Vec<Piece> {
         let g = |[x, y]: [i64; 2]| GridPoint { x, y, z: 0 };
         cuts.iter().fold(pieces, |pieces, &[a, b]| {
             let l = Line::edge(g(a), g(b)).unwrap();

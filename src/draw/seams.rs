@@ -12,7 +12,7 @@
 //! same f64 pixel, so rounded bits do not name a point).
 //! Boundaries against nothing (the silhouette) or between pieces of one group are never returned.
 
-use super::regions::{UnionFind, Vertices};
+use super::regions::{UnionFind, Vertices, surely_off_line};
 use crate::exact::polygon::Piece;
 use crate::visibility::grid::for_each_near_edges;
 use std::cmp::Ordering;
@@ -144,11 +144,13 @@ pub fn shared_edges(
 /// exactly on the other's kernel line, are one run, drawn as the union of its segments along
 /// the line. Pieces cut a boundary at points of their own (the BSP's screen splits, the
 /// coverage map's splits); joined, the segments are the maximal straight runs of the point set
-/// the edges cover, whatever the cut.
+/// the edges cover, whatever the cut. `vertices` are the pieces' [`Vertices`], which the
+/// edges were found with.
 pub fn straight_runs(
     segments: &[StrokeSegment],
     edges: &[SharedEdge],
     pieces: &[Piece],
+    vertices: &Vertices,
 ) -> Vec<[[f64; 2]; 2]> {
     // Every segment end as (vertex id, segment, end) in one sortable word: by vertex id.
     let mut ends: Vec<u64> = (segments.iter().enumerate())
@@ -164,11 +166,20 @@ pub fn straight_runs(
             if i + 1 == meeting.len() {
                 break;
             }
-            // Segment s's line, approximated once for every later segment at this point.
-            let (lp, l) = edge(segment_of(e)).line;
-            let (lp, l) = (lp as usize, l as usize);
-            let (line, approx) = (pieces[lp].line(l), pieces[lp].line_approx(l));
+            let (s, at) = (&segments[segment_of(e)], end_of(e));
+            // Segment s's line, approximated once for every later segment at this point that
+            // the pixels do not already put off it.
+            let mut line = None;
             for &f in &meeting[i + 1..] {
+                let far = segments[segment_of(f)].ends[1 - end_of(f)];
+                if surely_off_line(s.ends[at], s.ends[1 - at], far, vertices.pixel_error) {
+                    continue;
+                }
+                let (line, approx) = *line.get_or_insert_with(|| {
+                    let (lp, l) = edge(segment_of(e)).line;
+                    let lp = &pieces[lp as usize];
+                    (lp.line(l as usize), lp.line_approx(l as usize))
+                });
                 let (fp, fv) = edge(segment_of(f)).vertices[1 - end_of(f)];
                 let (fp, fv) = (fp as usize, fv as usize);
                 if pieces[fp].vertex_line_sign_with(fv, line, &approx) == Ordering::Equal {
@@ -342,7 +353,8 @@ mod tests {
         );
     }
     use crate::draw::regions::shared_vertices;
-    use crate::draw::regions::tests::{grid_piece as piece, grid_samples, to_grid};
+    use crate::draw::regions::tests::{cut, grid_piece as piece, grid_samples, to_grid};
+    use crate::exact::Samples;
 
     /// The shared segments as (pieces, ends in grid units, ends sorted).
     fn shared(pieces: &[Piece], group: impl Fn(usize) -> u32) -> Vec<([usize; 2], [[f64; 2]; 2])> {
@@ -415,7 +427,7 @@ mod tests {
         let segments: Vec<StrokeSegment> = (edges.iter().enumerate())
             .map(|(i, e)| e.segment(i, &vertices))
             .collect();
-        let mut out: Vec<[[f64; 2]; 2]> = straight_runs(&segments, &edges, pieces)
+        let mut out: Vec<[[f64; 2]; 2]> = straight_runs(&segments, &edges, pieces, &vertices)
             .into_iter()
             .map(|e| {
                 let mut e = e.map(to_grid);
@@ -449,5 +461,57 @@ mod tests {
             runs(&corner, |i| (i > 0) as u32),
             vec![[[0.0, 4.0], [4.0, 4.0]], [[4.0, 0.0], [4.0, 4.0]]]
         );
+    }
+
+    /// The stroke segments of `pieces` (one colour) in pixels of `samples`, with the pixel
+    /// filter ([`surely_off_line`]) or without it (every meeting tested exactly).
+    fn pixel_runs(pieces: &[Piece], samples: &Samples, filter: bool) -> Vec<[[f64; 2]; 2]> {
+        let mut vertices = shared_vertices(pieces, samples);
+        if !filter {
+            vertices.pixel_error = f64::INFINITY;
+        }
+        let edges = shared_edges(pieces, &vertices, |i| pieces[i].poly);
+        let segments: Vec<StrokeSegment> = (edges.iter().enumerate())
+            .map(|(i, e)| e.segment(i, &vertices))
+            .collect();
+        straight_runs(&segments, &edges, pieces, &vertices)
+    }
+
+    proptest::proptest! {
+        /// Two triangles at the screen's scale sharing a slanted edge, cut by lines across it:
+        /// the seam is that edge, one segment between its corners, however the cuts' rounded
+        /// crossings lie on it (the pixel filter never puts a part of it off its line), as
+        /// with every meeting decided exactly.
+        #[test]
+        fn a_slanted_seam_cut_at_rounded_crossings_is_one_segment(
+            c in proptest::array::uniform4(proptest::array::uniform2(-(1i64 << 51)..1 << 51)),
+            cuts in proptest::collection::vec(
+                proptest::array::uniform2(proptest::array::uniform2(-(1i64 << 51)..1 << 51)),
+                1..4,
+            ),
+        ) {
+            let [mut p, mut q, r, s] = c;
+            let turn = |a: [i64; 2], b: [i64; 2], c: [i64; 2]| {
+                let d = |u: i64, v: i64| i128::from(u) - i128::from(v);
+                d(b[0], a[0]) * d(c[1], a[1]) - d(b[1], a[1]) * d(c[0], a[0])
+            };
+            // r on the left of p -> q, s on its right.
+            proptest::prop_assume!(turn(p, q, r).signum() * turn(p, q, s).signum() < 0);
+            if turn(p, q, r) < 0 {
+                (p, q) = (q, p);
+            }
+            proptest::prop_assume!(cuts.iter().all(|l| l[0] != l[1]));
+            let pieces = cut(vec![piece(0, &[p, q, r]), piece(1, &[q, p, s])], &cuts);
+            let samples = Samples::new(1000, 800);
+            let pixel = |[x, y]: [i64; 2]| [samples.col_of(x as f64), samples.row_of(y as f64)];
+            let got = pixel_runs(&pieces, &samples, true);
+            proptest::prop_assert_eq!(got.len(), 1, "{:?}", got);
+            let mut ends = got[0];
+            ends.sort_by(|a, b| a.partial_cmp(b).unwrap());
+            let mut want = [pixel(p), pixel(q)];
+            want.sort_by(|a, b| a.partial_cmp(b).unwrap());
+            proptest::prop_assert_eq!(ends, want);
+            proptest::prop_assert_eq!(&got, &pixel_runs(&pieces, &samples, false));
+        }
     }
 }
