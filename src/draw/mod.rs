@@ -243,7 +243,10 @@ fn seam_strokes(
     color: &dyn Fn(&Piece) -> [f64; 3],
 ) -> Vec<SeamStroke> {
     use rayon::prelude::*;
-    let shared = seams::shared_edges(pieces, vertices, |i| group(&pieces[i]));
+    // Groups per piece first: read per edge, each cost a cache miss into the pieces.
+    let piece_group: Vec<u32> = pieces.iter().map(group).collect();
+    let shared = seams::shared_edges(pieces, vertices, |i| piece_group[i]);
+    drop(piece_group);
     // Colours by their 8-bit value (its sum, then its channels), then exactly: the darker of
     // an edge's two, and the least of a stroke's, whatever the order the pieces come in.
     let exactly = |x: &[f64; 3], y: &[f64; 3]| {
