@@ -139,6 +139,12 @@ fn write_leaf(out: &mut dyn Write, name: &str, attributes: &mut [(&str, &str)]) 
 /// (one pass; the crate replaces them one after the other, `&` first, which comes to the same).
 fn write_escaped(out: &mut dyn Write, value: &str) -> io::Result<()> {
     let bytes = value.as_bytes();
+    // Most values (path data, colours) have nothing to escape: looked for in one pass
+    // without an early exit, which the compiler runs many bytes at a time.
+    let special = |b: u8| matches!(b, b'&' | b'<' | b'>' | b'"' | b'\'');
+    if !bytes.iter().fold(false, |any, &b| any | special(b)) {
+        return out.write_all(bytes);
+    }
     let mut plain = 0;
     for (i, b) in bytes.iter().enumerate() {
         let entity: &[u8] = match b {
