@@ -78,6 +78,10 @@ fn canonical_rings(rings: &mut [Vec<[f64; 2]>]) {
         }
         orient(ring, true);
     }
+    // One ring (most regions) holds no hole and is in order: nothing more to find or allocate.
+    if rings.len() < 2 {
+        return;
+    }
     let holes = holes(rings);
     for (ring, &hole) in rings.iter_mut().zip(&holes) {
         if hole {
