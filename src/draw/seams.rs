@@ -15,6 +15,7 @@
 use super::regions::{UnionFind, Vertices, surely_off_line};
 use crate::exact::polygon::Piece;
 use crate::visibility::grid::for_each_near_edges;
+use smallvec::SmallVec;
 use std::cmp::Ordering;
 
 /// One shared boundary segment: 32 bytes (a drawing of a million pieces has about as many).
@@ -129,7 +130,7 @@ pub fn shared_edges(
         }
         for k in (0..pieces[a].len()).filter(|&k| !whole(edge(a, k))) {
             let (pa, pb) = ((a, &pieces[a]), (b, &pieces[b]));
-            if let Some(ends) = shared_part(pa, k, pb, vertices.partners_of(b)) {
+            if let Some(ends) = shared_part(pa, k, pb, vertices) {
                 out.push(SharedEdge::new([a, b], ends, (a, k)));
                 // Two disjoint convex pieces share at most one segment.
                 break;
@@ -261,39 +262,46 @@ fn union_along_line(segments: &mut [[[f64; 2]; 2]], out: &mut Vec<[[f64; 2]; 2]>
 }
 
 /// The segment of positive length that edge k of piece `a` (index `ia`) shares with an edge of
-/// piece `b` (index `ib`) not shared whole elsewhere (`b_partners`, its edges' partners:
-/// [`Vertices::partners`]), its ends as (piece index, vertex) of the pieces' vertices. `a` and
-/// `b` have disjoint interiors.
+/// piece `b` (index `ib`) not shared whole elsewhere ([`Vertices::partners`]), its ends as
+/// (piece index, vertex) of the pieces' vertices. `a` and `b` have disjoint interiors.
 fn shared_part(
     (ia, a): (usize, &Piece),
     k: usize,
     (ib, b): (usize, &Piece),
-    b_partners: &[u32],
+    vertices: &Vertices,
 ) -> Option<[(usize, usize); 2]> {
     let (na, nb) = (a.len(), b.len());
+    let (ids_a, ids_b) = (&vertices.ids[ia], &vertices.ids[ib]);
     let (line, approx) = (a.line(k), a.line_approx(k));
     // An edge j of b on a's line k: both of its ends on that line (a strictly convex piece has
-    // at most one edge on a line).
-    let on: Vec<bool> = (0..nb)
-        .map(|v| b.vertex_line_sign_with(v, line, &approx) == Ordering::Equal)
+    // at most one edge on a line). A vertex of b at an end of the edge is on it without a test
+    // (an exact one: a point on the line never clears the filter).
+    let ends_a = [ids_a[k], ids_a[(k + 1) % na]];
+    let on: SmallVec<[bool; 8]> = (0..nb)
+        .map(|v| {
+            ends_a.contains(&ids_b[v])
+                || b.vertex_line_sign_with(v, line, &approx) == Ordering::Equal
+        })
         .collect();
-    let alone = |j: usize| b_partners[j] == Vertices::ALONE;
+    let alone = |j: usize| vertices.partners_of(ib)[j] == Vertices::ALONE;
     let j = (0..nb).find(|&j| alone(j) && on[j] && on[(j + 1) % nb])?;
     // The shared part of the two collinear edges runs between the ends of each that lie in the
-    // other piece (closed); an end of b that is an end of a (decided exactly) counts once.
-    // Edges with both pieces on one side of the line meet at most at a point: no segment.
-    let in_closed = |p: &Piece, v: usize, q: &Piece| {
-        q.lines_with_approx()
-            .all(|(l, la)| p.vertex_line_sign_with(v, l, &la) != Ordering::Less)
+    // other piece (closed); an end of b that is an end of a (the same exact point: the same
+    // id) counts once. A vertex of the other piece lies in it without a test. Edges with both
+    // pieces on one side of the line meet at most at a point: no segment.
+    let in_closed = |p: &Piece, id: u32, v: usize, q: &Piece, q_ids: &[u32]| {
+        q_ids.contains(&id)
+            || (q.lines_with_approx())
+                .all(|(l, la)| p.vertex_line_sign_with(v, l, &la) != Ordering::Less)
     };
-    let from_a: Vec<usize> = [k, (k + 1) % na]
+    let from_a: SmallVec<[usize; 2]> = [k, (k + 1) % na]
         .into_iter()
-        .filter(|&v| in_closed(a, v, b))
+        .filter(|&v| in_closed(a, ids_a[v], v, b, ids_b))
         .collect();
-    let from_b = [j, (j + 1) % nb]
-        .into_iter()
-        .filter(|&w| in_closed(b, w, a) && !from_a.iter().any(|&v| a.same_vertex(v, b, w)));
-    let ends: Vec<(usize, usize)> = from_a
+    let from_b = [j, (j + 1) % nb].into_iter().filter(|&w| {
+        !from_a.iter().any(|&v| ids_a[v] == ids_b[w]) && in_closed(b, ids_b[w], w, a, ids_a)
+    });
+    let ends: SmallVec<[(usize, usize); 4]> = from_a
         .iter()
         .map(|&v| (ia, v))
         .chain(from_b.map(|w| (ib, w)))
