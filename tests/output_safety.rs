@@ -134,6 +134,30 @@ fn a_fifo_is_written_in_place_for_its_reader() {
     assert_eq!(names(dir.path()), ["pipe.png"]);
 }
 
+/// A file of many megabytes (its writeback started as it is written, every few megabytes)
+/// replaces the old one with every byte in place, whatever sizes the writes come in.
+#[test]
+fn a_large_output_replaces_the_old_file_byte_for_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = old_file(dir.path(), "big.svg");
+    let bytes: Vec<u8> = (0..21_000_017u32).map(|i| (i % 251) as u8).collect();
+    write_with(&out, |w| {
+        let mut rest = &bytes[..];
+        for size in [1, 7_000, 3 << 20, 5].into_iter().cycle() {
+            if rest.is_empty() {
+                break;
+            }
+            let (now, after) = rest.split_at(size.min(rest.len()));
+            w.write_all(now)?;
+            rest = after;
+        }
+        Ok(())
+    })
+    .unwrap();
+    assert!(fs::read(&out).unwrap() == bytes, "the file differs");
+    assert_eq!(names(dir.path()), ["big.svg"]);
+}
+
 #[test]
 fn a_replaced_file_keeps_its_mode() {
     let dir = tempfile::tempdir().unwrap();
