@@ -35,7 +35,7 @@
 
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
-use crate::exact::predicates::crossing_rounded;
+use crate::exact::predicates::{Line, LineApprox, crossing_rounded};
 use crate::output::drawing::Rings;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
@@ -951,6 +951,8 @@ impl Group<'_> {
             vertex: (k + 1) % pa.len(),
         };
         let ends = [self.id(start), self.id(end)];
+        // The edge's piece's lines, approximated once when a vertex first needs them.
+        let mut lines: Option<SmallVec<[(&Line, LineApprox); 4]>> = None;
         let mut found: Vec<(f64, u32, At)> = Vec::new();
         for &j in near {
             let b = self.members[j];
@@ -973,8 +975,9 @@ impl Group<'_> {
                 {
                     continue;
                 }
-                let strictly_inside = pa.lines_with_approx().enumerate().all(|(l, (m, ma))| {
-                    l == k || pb.vertex_line_sign_with(v, m, &ma) == Ordering::Greater
+                let lines = lines.get_or_insert_with(|| pa.lines_with_approx().collect());
+                let strictly_inside = lines.iter().enumerate().all(|(l, (m, ma))| {
+                    l == k || pb.vertex_line_sign_with(v, m, ma) == Ordering::Greater
                 });
                 if strictly_inside && pb.vertex_line_sign_with(v, line, &approx) == Ordering::Equal
                 {
