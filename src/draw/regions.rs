@@ -334,6 +334,7 @@ pub struct Vertices {
     pub partners: Vec<u32>,
     /// A bound on how far each pixel coordinate lies from its exact point's: f64 tests on
     /// the pixels that clear it by their own error decide exactly ([`surely_off_line`]).
+    /// Zero in the empty default (no pixels); infinite where no bound is known.
     pub pixel_error: f64,
 }
 
@@ -493,7 +494,14 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
                     None => new_off_grid.push(k),
                 }
                 let p = vertex_pixel(pa, k, s);
+                // A point whose f64 error exceeds the refinement bound (none: only parallel
+                // lines would leave one) is outside what the bound covers: no bound then.
+                let e = pa.point(k)[2];
+                let loose = e.is_nan() || e > Piece::POINT_ERROR_MAX;
                 largest = largest.max(p[0].abs()).max(p[1].abs());
+                if loose {
+                    largest = f64::INFINITY;
+                }
                 (p, next - 1)
             });
             pixels.push(p);
@@ -511,11 +519,13 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
     out
 }
 
-/// A bound on the error of [`vertex_pixel`]'s coordinates, each at most `largest` in size.
-/// The grid point errs by half an ulp (correctly rounded) or by [`Piece::POINT_ERROR_MAX`]
-/// (2^16 units; the fallback when no rounding is made); a grid unit is W 2^-53 pixels, so
-/// that is W 2^-37 pixels at most; the three roundings of the map to pixels and the half ulp
-/// add at most 2^-51 (|p| + W). Each term is taken twice over.
+/// A bound on the error of [`vertex_pixel`]'s coordinates, each at most `largest` in size
+/// (infinite: no bound). The grid point is correctly rounded, half an ulp; where no rounding
+/// is made (two parallel lines: never adjacent lines of a piece) the f64 point is used,
+/// within its own bound, which [`shared_vertices`] checks is at most [`Piece::POINT_ERROR_MAX`]
+/// (2^16 units; a grid unit is W 2^-53 pixels, so W 2^-37 pixels). The three roundings of
+/// the map to pixels and the half ulp add at most 2^-51 (|p| + W). Each term is taken twice
+/// over.
 fn pixel_error(s: &Samples, largest: f64) -> f64 {
     debug_assert_eq!(Piece::POINT_ERROR_MAX, 65536.0);
     let size = (s.width + s.height) as f64;

@@ -52,7 +52,7 @@ impl SharedEdge {
         StrokeSegment {
             ids: (self.vertices).map(|(p, v)| vertices.ids[p as usize][v as usize]),
             ends: self.ends(vertices),
-            edge: edge as u32,
+            edge: u32::try_from(edge).expect("edges are numbered in 32 bits"),
         }
     }
 }
@@ -154,6 +154,10 @@ pub fn straight_runs(
     vertices: &Vertices,
 ) -> Vec<[[f64; 2]; 2]> {
     // Every segment end as (vertex id, segment, end) in one sortable word: by vertex id.
+    assert!(
+        segments.len() < 1 << 31,
+        "a stroke's segments are numbered in 31 bits"
+    );
     let mut ends: Vec<u64> = (segments.iter().enumerate())
         .flat_map(|(s, g)| [0, 1].map(|end| u64::from(g.ids[end]) << 32 | (s << 1 | end) as u64))
         .collect();

@@ -300,3 +300,27 @@ impl<W: Write> Write for PipeEnd<W> {
         self.note(r)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The writeback is started once a stretch of [`Writeback::EVERY`] bytes is written, for
+    /// that whole stretch, and every byte reaches the file.
+    #[test]
+    fn writeback_starts_each_full_stretch_and_keeps_every_byte() {
+        let file = tempfile::tempfile().unwrap();
+        let mut w = Writeback::new(&file);
+        let every = Writeback::EVERY as usize;
+        let chunk = vec![7u8; every / 2 + 1];
+        w.write_all(&chunk).unwrap();
+        assert_eq!((w.written, w.started), (chunk.len() as u64, 0));
+        w.write_all(&chunk).unwrap();
+        let two = 2 * chunk.len() as u64;
+        assert_eq!((w.written, w.started), (two, two));
+        w.write_all(&[1, 2, 3]).unwrap();
+        assert_eq!((w.written, w.started), (two + 3, two));
+        w.flush().unwrap();
+        assert_eq!(file.metadata().unwrap().len(), two + 3);
+    }
+}
