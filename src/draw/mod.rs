@@ -268,56 +268,48 @@ fn seam_strokes(
         let [ca, cb] = e.pieces.map(|i| piece_color[i as usize]);
         if darker(&cb, &ca).is_lt() { cb } else { ca }
     };
-    // Faces of one 8-bit colour may differ below it: a stroke takes the least. Found as the
-    // edges are ordered, where their colours are read in edge order (read again per colour,
-    // they cost a cache miss an edge).
-    let keep_least = |least_of: &mut FxHashMap<u32, [f64; 3]>, rgb, c: [f64; 3]| {
-        let least = least_of.entry(rgb).or_insert(c);
-        if exactly(&c, least).is_lt() {
-            *least = c;
-        }
-    };
-    // The edges by 8-bit colour, each colour's in edge order, read once in edge order
-    // ([`seams::StrokeSegment`]) and placed in colour order (a counting sort: each stroke's
-    // segments are then one stretch of memory).
-    let mut least_of: FxHashMap<u32, [f64; 3]> = FxHashMap::default();
-    // Each edge's 8-bit colour, then its place among the colours in order.
-    let mut color_of: Vec<u32> = (shared.iter())
+    // Per 8-bit colour: the least exact colour its edges have (faces of one 8-bit colour may
+    // differ below it), found as the edges are read in edge order (read again per colour,
+    // they cost a cache miss an edge), and its number of edges.
+    let mut by_rgb: FxHashMap<u32, ([f64; 3], usize)> = FxHashMap::default();
+    let rgb_of: Vec<u32> = (shared.iter())
         .map(|edge| {
             let c = stroked(edge);
             let [r, g, b] = to_u8(c).map(u32::from);
             let rgb = r << 16 | g << 8 | b;
-            keep_least(&mut least_of, rgb, c);
+            let (least, count) = by_rgb.entry(rgb).or_insert((c, 0));
+            if exactly(&c, least).is_lt() {
+                *least = c;
+            }
+            *count += 1;
             rgb
         })
         .collect();
-    let mut colors: Vec<(u32, [f64; 3])> = least_of.into_iter().collect();
-    colors.sort_unstable_by_key(|&(rgb, _)| rgb);
-    let place: FxHashMap<u32, usize> = (colors.iter().enumerate())
-        .map(|(i, &(rgb, _))| (rgb, i))
+    let mut colors: Vec<(u32, [f64; 3], usize)> = (by_rgb.into_iter())
+        .map(|(rgb, (least, count))| (rgb, least, count))
         .collect();
-    for c in &mut color_of {
-        *c = place[&*c] as u32;
-    }
-    // Per colour, where its next segment goes: from the start of its stretch on.
-    let mut next = vec![0; colors.len()];
-    for &c in &color_of {
-        next[c as usize] += 1;
-    }
+    colors.sort_unstable_by_key(|&(rgb, ..)| rgb);
+    // The edges by colour, each colour's in edge order, read once in edge order
+    // ([`seams::StrokeSegment`]) and placed by a counting sort: each stroke's segments are
+    // one stretch of memory. Per colour, its stretch and where its next segment goes.
     let mut stretches = Vec::with_capacity(colors.len());
-    let mut start = 0;
-    for n in &mut next {
-        stretches.push(start..start + *n);
-        (start, *n) = (start + *n, start);
+    let mut next: FxHashMap<u32, usize> = FxHashMap::default();
+    for &(rgb, _, count) in &colors {
+        let start = stretches
+            .last()
+            .map_or(0, |s: &std::ops::Range<usize>| s.end);
+        stretches.push(start..start + count);
+        next.insert(rgb, start);
     }
     let mut segments = vec![seams::StrokeSegment::default(); shared.len()];
-    for (e, (edge, c)) in shared.iter().zip(color_of).enumerate() {
-        segments[next[c as usize]] = edge.segment(e, vertices);
-        next[c as usize] += 1;
+    for (e, (edge, rgb)) in shared.iter().zip(rgb_of).enumerate() {
+        let at = next.get_mut(&rgb).expect("every colour has its stretch");
+        segments[*at] = edge.segment(e, vertices);
+        *at += 1;
     }
     // Colour by colour on all cores (a mesh shaded flat has hundreds), in colour order.
     (colors.into_par_iter().zip(stretches))
-        .map(|((_, color), stretch)| SeamStroke {
+        .map(|((_, color, _), stretch)| SeamStroke {
             color,
             segments: seams::straight_runs(&segments[stretch], &shared, pieces, vertices),
         })
