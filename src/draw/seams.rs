@@ -195,22 +195,16 @@ pub fn straight_runs(
         }
     }
     drop(ends);
-    let mut out = Vec::with_capacity(segments.len());
-    let mut run: Vec<[[f64; 2]; 2]> = Vec::new();
-    if !joined {
-        // Every segment a run of its own (most strokes): in segment order, as below.
-        for g in segments {
-            run.clear();
-            run.push(g.ends);
-            union_along_line(&mut run, &mut out);
-        }
-        return out;
-    }
-    // Runs by their root, each in segment order.
+    // Runs by their root, each in segment order. Where no segments joined (most strokes),
+    // each is its own root: already in that order.
     let mut order: Vec<u64> = (0..segments.len())
         .map(|s| (runs.find(s) as u64) << 32 | s as u64)
         .collect();
-    order.sort_unstable();
+    if joined {
+        order.sort_unstable();
+    }
+    let mut out = Vec::with_capacity(segments.len());
+    let mut run: Vec<[[f64; 2]; 2]> = Vec::new();
     for members in order.chunk_by(|a, b| a >> 32 == b >> 32) {
         // A path of segments along one line, or segments overlapping on it (two strategies cut
         // one boundary into different parts): their union, whatever the cut.
@@ -434,12 +428,7 @@ mod tests {
 
     /// The stroke segments of `pieces` (one colour), grid units, each from its smaller end.
     fn runs(pieces: &[Piece], group: impl Fn(usize) -> u32) -> Vec<[[f64; 2]; 2]> {
-        let vertices = shared_vertices(pieces, &grid_samples());
-        let edges = shared_edges(pieces, &vertices, group);
-        let segments: Vec<StrokeSegment> = (edges.iter().enumerate())
-            .map(|(i, e)| e.segment(i, &vertices))
-            .collect();
-        let mut out: Vec<[[f64; 2]; 2]> = straight_runs(&segments, &edges, pieces, &vertices)
+        let mut out: Vec<[[f64; 2]; 2]> = pixel_runs(pieces, &grid_samples(), group, true)
             .into_iter()
             .map(|e| {
                 let mut e = e.map(to_grid);
@@ -477,12 +466,17 @@ mod tests {
 
     /// The stroke segments of `pieces` (one colour) in pixels of `samples`, with the pixel
     /// filter ([`surely_off_line`]) or without it (every meeting tested exactly).
-    fn pixel_runs(pieces: &[Piece], samples: &Samples, filter: bool) -> Vec<[[f64; 2]; 2]> {
+    fn pixel_runs(
+        pieces: &[Piece],
+        samples: &Samples,
+        group: impl Fn(usize) -> u32,
+        filter: bool,
+    ) -> Vec<[[f64; 2]; 2]> {
         let mut vertices = shared_vertices(pieces, samples);
         if !filter {
             vertices.pixel_error = f64::INFINITY;
         }
-        let edges = shared_edges(pieces, &vertices, |i| pieces[i].poly);
+        let edges = shared_edges(pieces, &vertices, group);
         let segments: Vec<StrokeSegment> = (edges.iter().enumerate())
             .map(|(i, e)| e.segment(i, &vertices))
             .collect();
@@ -516,14 +510,14 @@ mod tests {
             let pieces = cut(vec![piece(0, &[p, q, r]), piece(1, &[q, p, s])], &cuts);
             let samples = Samples::new(1000, 800);
             let pixel = |[x, y]: [i64; 2]| [samples.col_of(x as f64), samples.row_of(y as f64)];
-            let got = pixel_runs(&pieces, &samples, true);
+            let got = pixel_runs(&pieces, &samples, |i| pieces[i].poly, true);
             proptest::prop_assert_eq!(got.len(), 1, "{:?}", got);
             let mut ends = got[0];
             ends.sort_by(|a, b| a.partial_cmp(b).unwrap());
             let mut want = [pixel(p), pixel(q)];
             want.sort_by(|a, b| a.partial_cmp(b).unwrap());
             proptest::prop_assert_eq!(ends, want);
-            proptest::prop_assert_eq!(&got, &pixel_runs(&pieces, &samples, false));
+            proptest::prop_assert_eq!(&got, &pixel_runs(&pieces, &samples, |i| pieces[i].poly, false));
         }
     }
 }
