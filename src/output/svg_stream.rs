@@ -141,25 +141,34 @@ fn write_escaped(out: &mut dyn Write, value: &str) -> io::Result<()> {
     let bytes = value.as_bytes();
     // Most values (path data, colours) have nothing to escape: looked for in one pass
     // without an early exit, which the compiler runs many bytes at a time.
-    let special = |b: u8| matches!(b, b'&' | b'<' | b'>' | b'"' | b'\'');
-    if !bytes.iter().fold(false, |any, &b| any | special(b)) {
+    if !bytes
+        .iter()
+        .fold(false, |any, &b| any | entity(b).is_some())
+    {
         return out.write_all(bytes);
     }
     let mut plain = 0;
-    for (i, b) in bytes.iter().enumerate() {
-        let entity: &[u8] = match b {
-            b'&' => b"&amp;",
-            b'<' => b"&lt;",
-            b'>' => b"&gt;",
-            b'"' => b"&quot;",
-            b'\'' => b"&apos;",
-            _ => continue,
+    for (i, &b) in bytes.iter().enumerate() {
+        let Some(entity) = entity(b) else {
+            continue;
         };
         out.write_all(&bytes[plain..i])?;
         out.write_all(entity)?;
         plain = i + 1;
     }
     out.write_all(&bytes[plain..])
+}
+
+/// The entity an attribute value writes for byte `b`, if any.
+fn entity(b: u8) -> Option<&'static [u8]> {
+    Some(match b {
+        b'&' => b"&amp;",
+        b'<' => b"&lt;",
+        b'>' => b"&gt;",
+        b'"' => b"&quot;",
+        b'\'' => b"&apos;",
+        _ => return None,
+    })
 }
 
 #[cfg(test)]
