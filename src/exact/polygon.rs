@@ -913,28 +913,108 @@ pub fn separated_at_corners(p: &Piece, q: &Piece) -> Option<bool> {
 }
 
 /// [`separated_at_corners`] on the pieces' [`Piece::grid_corners`] (for a caller testing each
-/// piece against many).
+/// piece against many: [`CornerLines`] keeps the edge lines too).
 pub fn corners_separated(pc: &[[i64; 2]], qc: &[[i64; 2]]) -> bool {
-    use super::predicates::cross_xy;
-    // Some edge of `a` with no corner of `b` strictly on its inner side.
-    fn outside(a: &[[i64; 2]], b: &[[i64; 2]]) -> bool {
-        let turn = (1..a.len() - 1)
-            .map(|i| cross_xy(a[0], a[i], a[i + 1]).signum())
-            .find(|&t| t != 0)
-            .unwrap_or(0);
-        if turn == 0 {
-            return false;
-        }
-        // Edges as (corner before, corner): no index arithmetic in the loop (a `%` by a
-        // length only known at run time is a division, dearer than the products).
-        let mut c = a[a.len() - 1];
-        a.iter().any(|&d| {
-            let edge = (c, d);
-            c = d;
-            b.iter().all(|&v| cross_xy(edge.0, edge.1, v) * turn <= 0)
-        })
+    (CornerOutline::of(pc).view()).separated(CornerOutline::of(qc).view())
+}
+
+/// The line through an edge of a convex grid polygon as `a·x + b·y + c`: positive strictly
+/// inside the polygon, zero on the line. Exact in i128: for corners within the grid
+/// (|x|, |y| <= 2^53), |a| and |b| are at most 2^54 and |c| at most 2^108, so a value at a grid
+/// point is below 2^110. It is the edge's `cross_xy` turned by the polygon's orientation, with
+/// the products that do not depend on the point made once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EdgeLine {
+    a: i64,
+    b: i64,
+    c: i128,
+}
+
+impl EdgeLine {
+    /// The line's value at `v`.
+    #[inline]
+    pub fn at(&self, v: [i64; 2]) -> i128 {
+        self.a as i128 * v[0] as i128 + self.b as i128 * v[1] as i128 + self.c
     }
-    outside(qc, pc) || outside(pc, qc)
+}
+
+/// Adds to `out` the edge lines of the convex polygon with these corners (either turn), one per
+/// edge in order; none when the corners lie on one line (such a polygon has no inside).
+pub fn push_edge_lines(corners: &[[i64; 2]], out: &mut impl Extend<EdgeLine>) {
+    use super::predicates::cross_xy;
+    let turn = (1..corners.len().saturating_sub(1))
+        .map(|i| cross_xy(corners[0], corners[i], corners[i + 1]).signum())
+        .find(|&t| t != 0)
+        .unwrap_or(0) as i64;
+    if turn == 0 {
+        return;
+    }
+    let mut c = corners[corners.len() - 1];
+    out.extend(corners.iter().map(|&d| {
+        let (dx, dy) = ((d[0] - c[0]) * turn, (d[1] - c[1]) * turn);
+        // cross_xy(c, d, v) · turn = dx·(vy - cy) - dy·(vx - cx).
+        let line = EdgeLine {
+            a: -dy,
+            b: dx,
+            c: dy as i128 * c[0] as i128 - dx as i128 * c[1] as i128,
+        };
+        c = d;
+        line
+    }));
+}
+
+/// A convex grid polygon's corners with its [`push_edge_lines`], owned: see [`CornerLines`].
+#[derive(Clone, Debug)]
+pub struct CornerOutline {
+    corners: SmallVec<[[i64; 2]; 6]>,
+    lines: SmallVec<[EdgeLine; 6]>,
+}
+
+impl CornerOutline {
+    /// The convex polygon with these corners (either turn).
+    pub fn of(corners: &[[i64; 2]]) -> Self {
+        let mut lines = SmallVec::new();
+        push_edge_lines(corners, &mut lines);
+        CornerOutline {
+            corners: SmallVec::from_slice(corners),
+            lines,
+        }
+    }
+
+    /// Borrowed, to test against others.
+    pub fn view(&self) -> CornerLines<'_> {
+        CornerLines::new(&self.corners, &self.lines)
+    }
+}
+
+/// A convex grid polygon's corners with its [`push_edge_lines`], borrowed: the lines are found
+/// once for a polygon tested against many.
+#[derive(Clone, Copy, Debug)]
+pub struct CornerLines<'a> {
+    corners: &'a [[i64; 2]],
+    lines: &'a [EdgeLine],
+}
+
+impl<'a> CornerLines<'a> {
+    /// `lines` must be [`push_edge_lines`] of `corners`.
+    pub fn new(corners: &'a [[i64; 2]], lines: &'a [EdgeLine]) -> Self {
+        debug_assert!(lines.is_empty() || lines.len() == corners.len());
+        CornerLines { corners, lines }
+    }
+
+    /// Do the two polygons have disjoint interiors? Exact: an edge line of one has every corner
+    /// of the other on its closed outer side (touching allowed).
+    #[inline]
+    pub fn separated(self, other: CornerLines) -> bool {
+        // Each line's corners are all tested, with no early exit: the three or so products
+        // cost less than the branches a short-circuit would mispredict.
+        let excludes = |lines: &[EdgeLine], corners: &[[i64; 2]]| {
+            lines
+                .iter()
+                .any(|l| corners.iter().fold(true, |out, &v| out & (l.at(v) <= 0)))
+        };
+        excludes(other.lines, self.corners) || excludes(self.lines, other.corners)
+    }
 }
 
 /// Are two support planes (c > 0) the same plane? Exact: their coefficients are proportional
@@ -1134,6 +1214,49 @@ mod tests {
                 .filter(|q| q.abs() <= g.as_::<I256>())
                 .map(|q| q.as_::<i64>());
             assert_eq!(exact_quotient(n, den), want, "n {n} den {den}");
+        }
+    }
+
+    /// Separation by each edge's `cross_xy` times the polygon's turn, as it was computed before
+    /// [`EdgeLine`]: the reference the lines must agree with.
+    fn separated_by_crosses(pc: &[[i64; 2]], qc: &[[i64; 2]]) -> bool {
+        use super::super::predicates::cross_xy;
+        fn outside(a: &[[i64; 2]], b: &[[i64; 2]]) -> bool {
+            let turn = (1..a.len() - 1)
+                .map(|i| cross_xy(a[0], a[i], a[i + 1]).signum())
+                .find(|&t| t != 0)
+                .unwrap_or(0);
+            turn != 0
+                && (0..a.len()).any(|k| {
+                    let (c, d) = (a[(k + a.len() - 1) % a.len()], a[k]);
+                    b.iter().all(|&v| cross_xy(c, d, v) * turn <= 0)
+                })
+        }
+        outside(qc, pc) || outside(pc, qc)
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(3000))]
+
+        /// The edge lines decide separation as the crosses do: triangles on a coarse lattice
+        /// (so corners are shared, collinear and repeated often) scaled to the grid's ends,
+        /// where the lines' products are largest, in either turn.
+        #[test]
+        fn edge_lines_separate_as_the_crosses_do(
+            p in proptest::collection::vec((-4i64..=4, -4i64..=4), 3),
+            q in proptest::collection::vec((-4i64..=4, -4i64..=4), 3),
+            shift in (-4i64..=4, -4i64..=4),
+            scale_bits in 0u32..=50,
+        ) {
+            let g = |(x, y): (i64, i64)| [x << scale_bits, y << scale_bits];
+            let pc: Vec<[i64; 2]> = p.into_iter().map(g).collect();
+            // Shifted by whole lattice steps, the second triangle stays within the grid.
+            let q_shift = |(x, y): (i64, i64)| ((x + shift.0).clamp(-8, 8), (y + shift.1).clamp(-8, 8));
+            let qc: Vec<[i64; 2]> = q.into_iter().map(q_shift).map(g).collect();
+            assert!(pc.iter().chain(&qc).flatten().all(|v| v.abs() <= crate::exact::GRID_MAX));
+            let want = separated_by_crosses(&pc, &qc);
+            proptest::prop_assert_eq!(corners_separated(&pc, &qc), want);
+            proptest::prop_assert_eq!(corners_separated(&qc, &pc), want);
         }
     }
 

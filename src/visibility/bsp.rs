@@ -25,9 +25,9 @@ use super::grid::{BoxGrid, NO_BOX, joined};
 use super::live::overlap;
 use super::strips::Counters;
 use super::visible_set::{Fragment, Stats, VisibleSet};
-use super::{Outline, initial_pieces, separated_on};
+use super::{CornerTable, Outline, initial_pieces, separated_on};
 use crate::exact::Plane;
-use crate::exact::polygon::{Boundary, Piece, Split, corners_separated, separated_by_lines};
+use crate::exact::polygon::{Boundary, Piece, Split, separated_by_lines};
 use crate::exact::predicates::Line;
 use crate::progress::{Report, Ticker};
 use crate::project::ScreenScene;
@@ -330,35 +330,32 @@ fn front_layer(
     tests: &mut usize,
 ) -> bool {
     let open: Vec<bool> = blockers.iter().map(|&b| b == OPEN).collect();
-    // Each piece's grid corners, found once (a piece meets a dozen boxes) and kept in one flat
-    // list: piece k's are `corners[start[k]..start[k + 1]]`, none when a vertex is off the grid
-    // and its face is not a triangle. A cut piece (off the grid) has its triangle's corners
-    // instead (`exact[k]` false): it lies within them, so triangles apart have pieces apart.
-    let (mut corners, mut start) = (Vec::new(), Vec::with_capacity(list.len() + 1));
+    // Each piece's grid corners and their edge lines, found once (a piece meets a dozen boxes),
+    // none when a vertex is off the grid and its face is not a triangle. A cut piece (off the
+    // grid) has its triangle's corners instead (`exact[k]` false): it lies within them, so
+    // triangles apart have pieces apart.
+    let mut outlines = CornerTable::with_capacity(list.len());
     let mut exact = Vec::with_capacity(list.len());
-    start.push(0);
     for p in list {
         match p.grid_corners() {
             Some(c) => {
-                corners.extend(c);
+                outlines.push(&c);
                 exact.push(true);
             }
             None => {
-                corners.extend(screen.triangle_xy(p.poly).into_iter().flatten());
+                outlines.push(screen.triangle_xy(p.poly).as_ref().map_or(&[], |t| &t[..]));
                 exact.push(false);
             }
         }
-        start.push(corners.len());
     }
-    let corners_of = |k: usize| Some(&corners[start[k]..start[k + 1]]).filter(|c| !c.is_empty());
     let mut pairs = 0;
     box_pairs(boxes, &open, |i, j| {
         *tests += 1;
         // Uncut neighbours on a surface share corners and never overlap: their corners settle
         // it before any plane test. Cut ones are apart when their triangles are.
-        let apart = corners_of(i)
-            .zip(corners_of(j))
-            .map(|(a, b)| corners_separated(a, b))
+        let apart = (outlines.get(i))
+            .zip(outlines.get(j))
+            .map(|(a, b)| a.separated(b))
             .filter(|&apart| apart || (exact[i] && exact[j]));
         if apart == Some(true) {
             return true;
@@ -397,15 +394,12 @@ fn under_layer(
 ) -> Vec<bool> {
     let layer: Vec<usize> = (0..list.len()).filter(|&k| blockers[k] == OPEN).collect();
     let grid = BoxGrid::holding(&layer.iter().map(|&k| boxes[k]).collect::<Vec<_>>());
-    // The layer's grid corners, found once in one flat list (each is tested against many):
-    // layer piece e's are `corners[start[e]..start[e + 1]]`, none when one is off the grid.
-    let (mut corners, mut start) = (Vec::new(), Vec::with_capacity(layer.len() + 1));
-    start.push(0);
+    // The layer's grid corners and their lines, found once (each is tested against many): none
+    // for a piece with a vertex off the grid.
+    let mut outlines = CornerTable::with_capacity(layer.len());
     for &k in &layer {
-        corners.extend(list[k].grid_corners().into_iter().flatten());
-        start.push(corners.len());
+        outlines.push(list[k].grid_corners().as_deref().unwrap_or(&[]));
     }
-    let corners_of = |e: usize| Some(&corners[start[e]..start[e + 1]]).filter(|c| !c.is_empty());
     // Per layer piece, the last piece of the rest that met it (a box lies in several cells):
     // `covered` takes the fronts in any order, so they need no sort.
     let mut seen = vec![usize::MAX; layer.len()];
@@ -421,7 +415,7 @@ fn under_layer(
                 let (e, j) = (e as usize, layer[e as usize]);
                 if seen[e] != k
                     && overlap(&boxes[j], &boxes[k])
-                    && !outline.separated_from_with(screen, &list[j], corners_of(e))
+                    && !outline.separated_from_with(screen, &list[j], outlines.get(e))
                 {
                     fronts.push(&list[j]);
                 }

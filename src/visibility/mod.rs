@@ -47,7 +47,9 @@ pub use visible_set::{Fragment, Stats, VisibleSet};
 pub use warnock_exact::WarnockExact;
 pub use weiler_atherton::WeilerAtherton;
 
-use crate::exact::polygon::{Boundary, Piece, convex_piece_indices};
+use crate::exact::polygon::{
+    Boundary, CornerLines, CornerOutline, EdgeLine, Piece, convex_piece_indices, push_edge_lines,
+};
 use crate::exact::{GridPoint, Samples};
 use crate::progress::Report;
 use crate::project::ScreenScene;
@@ -198,63 +200,106 @@ pub(crate) fn separated_on(screen: &ScreenScene, p: &Piece, q: &Piece) -> bool {
 }
 
 /// What [`separated_on`] reads of one piece, found once for a piece tested against many: its
-/// grid corners (an uncut face), and its face's triangle.
+/// grid corners and their edge lines (an uncut face), and its face's triangle.
 pub(crate) struct Outline<'p> {
     piece: &'p Piece,
-    corners: Option<smallvec::SmallVec<[[i64; 2]; 6]>>,
+    corners: Option<CornerOutline>,
     /// Found when first needed.
-    triangle: std::cell::OnceCell<Option<[[i64; 2]; 3]>>,
+    triangle: std::cell::OnceCell<Option<CornerOutline>>,
 }
 
 impl<'p> Outline<'p> {
     pub(crate) fn of(piece: &'p Piece) -> Self {
         Outline {
             piece,
-            corners: piece.grid_corners(),
+            corners: piece.grid_corners().map(|c| CornerOutline::of(&c)),
             triangle: std::cell::OnceCell::new(),
         }
     }
 
     /// [`separated_on`] of the piece and `q`.
     pub(crate) fn separated_from(&self, screen: &ScreenScene, q: &Piece) -> bool {
-        self.separated_from_with(screen, q, q.grid_corners().as_deref())
+        let q_corners = q.grid_corners().map(|c| CornerOutline::of(&c));
+        self.separated_from_with(screen, q, q_corners.as_ref().map(CornerOutline::view))
     }
 
-    /// [`Self::separated_from`] with `q`'s [`Piece::grid_corners`] found already (for pieces
-    /// tested against many).
+    /// [`Self::separated_from`] with `q`'s [`Piece::grid_corners`] and their lines found
+    /// already (for pieces tested against many).
     pub(crate) fn separated_from_with(
         &self,
         screen: &ScreenScene,
         q: &Piece,
-        q_corners: Option<&[[i64; 2]]>,
+        q_corners: Option<CornerLines>,
     ) -> bool {
-        use crate::exact::polygon::{corners_separated, separated_by_lines};
-        if let Some(a) = &self.corners
+        let own_corners = self.corners.as_ref().map(CornerOutline::view);
+        if let Some(a) = own_corners
             && let Some(b) = q_corners
         {
-            return corners_separated(a, b);
+            return a.separated(b);
         }
         // A piece with a vertex off the grid lies within its face's triangle: outlines (the
         // exact corners where known, else the triangle) that lie apart hold pieces apart. Else
         // a line of one with the other wholly on its outer side decides.
-        let own = match &self.corners {
-            Some(c) => Some(&c[..]),
-            None => (self.triangle)
-                .get_or_init(|| screen.triangle_xy(self.piece.poly))
+        let own = own_corners.or_else(|| {
+            (self.triangle)
+                .get_or_init(|| {
+                    screen
+                        .triangle_xy(self.piece.poly)
+                        .map(|t| CornerOutline::of(&t))
+                })
                 .as_ref()
-                .map(|t| &t[..]),
-        };
+                .map(CornerOutline::view)
+        });
         let their_triangle;
         let theirs = match q_corners {
             Some(c) => Some(c),
             None => {
-                their_triangle = screen.triangle_xy(q.poly);
-                their_triangle.as_ref().map(|t| &t[..])
+                their_triangle = screen.triangle_xy(q.poly).map(|t| CornerOutline::of(&t));
+                their_triangle.as_ref().map(CornerOutline::view)
             }
         };
-        own.zip(theirs)
-            .is_some_and(|(a, b)| corners_separated(a, b))
-            || separated_by_lines(self.piece, q)
+        own.zip(theirs).is_some_and(|(a, b)| a.separated(b))
+            || crate::exact::polygon::separated_by_lines(self.piece, q)
+    }
+}
+
+/// Convex grid polygons' corners and [`push_edge_lines`] in flat lists, for polygons tested
+/// against many ([`CornerLines::separated`]): entry k's corners are
+/// `corners[start[k][0]..start[k + 1][0]]`, its lines the same span of `lines` by `start[k][1]`.
+#[derive(Debug)]
+pub(crate) struct CornerTable {
+    corners: Vec<[i64; 2]>,
+    lines: Vec<EdgeLine>,
+    start: Vec<[u32; 2]>,
+}
+
+impl CornerTable {
+    pub(crate) fn with_capacity(entries: usize) -> Self {
+        let mut start = Vec::with_capacity(entries + 1);
+        start.push([0, 0]);
+        CornerTable {
+            corners: Vec::with_capacity(3 * entries),
+            lines: Vec::with_capacity(3 * entries),
+            start,
+        }
+    }
+
+    /// Adds an entry: the convex polygon with these corners (none: an entry with no outline,
+    /// which [`Self::get`] gives as none).
+    pub(crate) fn push(&mut self, corners: &[[i64; 2]]) {
+        self.corners.extend_from_slice(corners);
+        push_edge_lines(corners, &mut self.lines);
+        let ends = [self.corners.len(), self.lines.len()];
+        self.start
+            .push(ends.map(|e| u32::try_from(e).expect("below 2^32 corners")));
+    }
+
+    /// Entry k's outline, none when it has no corners.
+    pub(crate) fn get(&self, k: usize) -> Option<CornerLines<'_>> {
+        let ([c0, l0], [c1, l1]) = (self.start[k], self.start[k + 1]);
+        let corners = &self.corners[c0 as usize..c1 as usize];
+        (!corners.is_empty())
+            .then(|| CornerLines::new(corners, &self.lines[l0 as usize..l1 as usize]))
     }
 }
 
