@@ -1251,7 +1251,8 @@ mod tests {
             let g = |(x, y): (i64, i64)| [x << scale_bits, y << scale_bits];
             let pc: Vec<[i64; 2]> = p.into_iter().map(g).collect();
             // Shifted by whole lattice steps, the second triangle stays within the grid.
-            let q_shift = |(x, y): (i64, i64)| ((x + shift.0).clamp(-8, 8), (y + shift.1).clamp(-8, 8));
+            let q_shift =
+                |(x, y): (i64, i64)| ((x + shift.0).clamp(-8, 8), (y + shift.1).clamp(-8, 8));
             let qc: Vec<[i64; 2]> = q.into_iter().map(q_shift).map(g).collect();
             assert!(pc.iter().chain(&qc).flatten().all(|v| v.abs() <= crate::exact::GRID_MAX));
             let want = separated_by_crosses(&pc, &qc);

@@ -365,7 +365,7 @@ fn by_map(
 ) -> Vec<Piece> {
     let strip_count = strips.len();
     // The pieces the occlusion cells prove hidden are gone already (`unhidden_pieces`).
-    let (visible, cs) = visible_pieces_of_strips(screen, strips, report);
+    let (visible, cs) = visible_pieces_of_strips(screen, strips, Vec::new(), report);
     stage(
         stats,
         "order",

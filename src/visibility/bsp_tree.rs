@@ -12,7 +12,7 @@ use super::bsp::{Bsp, translucent_layer};
 use super::clear::clear_pieces;
 use super::coverage::Coverage;
 use super::occlusion::unhidden_pieces;
-use super::strips::{Strips, appended, solve_strips};
+use super::strips::{Strips, solve_strips_beside};
 use super::visible_set::{Stats, VisibleSet};
 use super::{Strategy, pieces_of, translucent_polygons};
 use crate::exact::predicates::fallback_count;
@@ -41,12 +41,11 @@ impl Strategy for BspTree {
         let clear = clear_pieces(screen, &opaque);
         let (strips, rest, clear) = Strips::cut_all_but(opaque, &clear);
         let strip_count = strips.count();
-        let (visible, st) = solve_strips(rest, report, |strip, report| {
+        let clear_count = clear.len();
+        let (visible, st) = solve_strips_beside(rest, clear, report, |strip, report| {
             Ok(Bsp::build_from(screen, strip, report).into_visible_pieces(screen))
         })
         .expect("the BSP never gives up");
-        let clear_count = clear.len();
-        let visible = appended(visible, clear);
         let (visible, layered, translucent_bsp) = if layered {
             let mut coverage = Coverage::of_visible(screen, visible);
             let (parts, st) = translucent_layer(screen, &mut coverage, see_through, report);

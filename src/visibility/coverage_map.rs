@@ -15,7 +15,7 @@ use super::bsp::translucent_layer;
 use super::clear::clear_pieces;
 use super::coverage::{Coverage, CoverageStats, nearest_first};
 use super::occlusion::unhidden_pieces;
-use super::strips::{Strips, appended, solve_strips};
+use super::strips::{Strips, solve_strips_beside};
 use super::visible_set::{Stats, VisibleSet};
 use super::{Strategy, pieces_of, translucent_polygons};
 use crate::exact::polygon::Piece;
@@ -99,20 +99,23 @@ fn visible_pieces_of(
     let (pieces, occluded) = unhidden_pieces(screen, polys);
     let clear = clear_pieces(screen, &pieces);
     let (strips, rest, clear) = Strips::cut_all_but(pieces, &clear);
-    let (visible, mut stats) = visible_pieces_of_strips(screen, rest, report);
+    let clear_count = clear.len();
+    let (visible, mut stats) = visible_pieces_of_strips(screen, rest, clear, report);
     stats.dropped_before_insertion(occluded);
-    stats.clear_before_insertion(clear.len());
-    (appended(visible, clear), stats, strips.count())
+    stats.clear_before_insertion(clear_count);
+    (visible, stats, strips.count())
 }
 
 /// The visible pieces of `strips` (pieces already cut into strips, [`Strips::cut`]) by the
-/// coverage map of each strip, on all cores, with the map's counters summed.
+/// coverage map of each strip, on all cores, with the map's counters summed, then with `beside`
+/// ([`solve_strips_beside`]).
 pub(crate) fn visible_pieces_of_strips(
     screen: &ScreenScene,
     strips: Vec<Vec<Piece>>,
+    beside: Vec<Piece>,
     report: Option<Report>,
 ) -> (Vec<Piece>, CoverageStats) {
-    solve_strips(strips, report, |strip, report| {
+    solve_strips_beside(strips, beside, report, |strip, report| {
         let coverage = coverage_of(screen, strip, report);
         let stats = coverage.stats.clone();
         Ok((coverage.into_pieces(), stats))

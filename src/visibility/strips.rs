@@ -295,13 +295,26 @@ pub(crate) fn solve_strips<C: Counters>(
     report: Option<Report>,
     solve: impl Fn(Vec<Piece>, Option<Report>) -> Result<(Vec<Piece>, C), Vec<Piece>> + Sync,
 ) -> Result<(Vec<Piece>, C), GivenUp> {
+    solve_strips_beside(strips, Vec::new(), report, solve)
+}
+
+/// [`solve_strips`], its visible pieces then [`appended`] with `beside` (pieces settled
+/// without the strips), each piece moved once. On giving up, `beside` is dropped.
+pub(crate) fn solve_strips_beside<C: Counters>(
+    strips: Vec<Vec<Piece>>,
+    beside: Vec<Piece>,
+    report: Option<Report>,
+    solve: impl Fn(Vec<Piece>, Option<Report>) -> Result<(Vec<Piece>, C), Vec<Piece>> + Sync,
+) -> Result<(Vec<Piece>, C), GivenUp> {
     if strips.len() == 1 {
         let only = strips.into_iter().next().expect("one strip");
         let before = fallback_count();
-        return solve(only, report).map_err(|given| {
-            reset_fallbacks(before);
-            vec![Some(given)]
-        });
+        return solve(only, report)
+            .map(|(visible, c)| (appended(visible, beside), c))
+            .map_err(|given| {
+                reset_fallbacks(before);
+                vec![Some(given)]
+            });
     }
     let total: usize = strips.iter().map(Vec::len).sum();
     let ticker = Mutex::new((Ticker::new(report, "visible set", total as u64), 0u64));
@@ -340,13 +353,21 @@ pub(crate) fn solve_strips<C: Counters>(
     // The whole list is made at its size, then filled strip by strip, each strip freed once
     // moved and its room handed back to the system every few strips: the strips' room, left
     // resident in the allocator's arenas, and the whole list were the process's peak on a
-    // million triangles (481 -> 682 MB while joining, the visible pieces being 189 MB).
-    let total = solved
+    // million triangles (481 -> 682 MB while joining, the visible pieces being 189 MB). As
+    // `appended` would order them, the strips' pieces go after `beside` when it is the longer,
+    // grown in place (its pages remapped), else into a fresh list with `beside` after them.
+    let total: usize = solved
         .iter()
         .filter_map(|s| s.0.as_ref().ok())
         .map(|s| s.0.len())
         .sum();
-    let mut pieces = Vec::with_capacity(total);
+    let (mut pieces, mut after) = if beside.len() > total {
+        let mut pieces = beside;
+        pieces.reserve_exact(total);
+        (pieces, Vec::new())
+    } else {
+        (Vec::with_capacity(total + beside.len()), beside)
+    };
     let mut counters = C::default();
     let joined = GiveBackEvery::default();
     // Every strip is `Ok` (checked above).
@@ -356,6 +377,7 @@ pub(crate) fn solve_strips<C: Counters>(
         counters.add(&c);
         joined.freed(n);
     }
+    pieces.append(&mut after);
     Ok((pieces, counters))
 }
 
