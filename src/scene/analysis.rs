@@ -137,10 +137,9 @@ fn weld(positions: &[DVec3]) -> Vec<u32> {
 }
 
 fn analyse_mesh(scene: &Scene, faces: &[Face], canon: &[u32]) -> MeshAnalysis {
-    // Each directed edge packed as (low vertex: 31 bits, high vertex: 32 bits, direction: 1 bit)
-    // in one u64, so one integer sort groups the uses of every undirected edge. A scene with 2^31
-    // vertices or more (48 GB of positions) is beyond that packing: its meshes are reported as
-    // open, which only turns culling off.
+    // `edge_counts` may pack each directed edge as (low vertex: 31 bits, high vertex: 32 bits,
+    // direction: 1 bit) in one u64. A scene with 2^31 vertices or more (48 GB of positions) is
+    // beyond that packing: its meshes are reported as open, which only turns culling off.
     if scene.positions.len() >= 1 << 31 {
         return MeshAnalysis {
             boundary_edges: 1,
@@ -150,27 +149,7 @@ fn analyse_mesh(scene: &Scene, faces: &[Face], canon: &[u32]) -> MeshAnalysis {
             volume_sign_certain: false,
         };
     }
-    let mut edges: Vec<u64> = (faces.par_iter())
-        .flat_map_iter(|f| {
-            let c = scene.face_corners(f);
-            (0..c.len()).map(move |k| {
-                let u = canon[c[k] as usize];
-                let v = canon[c[(k + 1) % c.len()] as usize];
-                let (lo, hi) = if u < v { (u, v) } else { (v, u) };
-                (lo as u64) << 33 | (hi as u64) << 1 | (u < v) as u64
-            })
-        })
-        .collect();
-    edges.par_sort_unstable();
-    let (mut boundary, mut nonmanifold, mut inconsistent) = (0, 0, 0);
-    for group in edges.chunk_by(|a, b| a >> 1 == b >> 1) {
-        match group {
-            [_] => boundary += 1,
-            [a, b] if a == b => inconsistent += 1,
-            [_, _] => {}
-            _ => nonmanifold += 1,
-        }
-    }
+    let (boundary, nonmanifold, inconsistent) = edge_counts(scene, faces, canon);
 
     // Signed volume about the mesh's first vertex, with a running bound on the summation error:
     // each term a·(b×c) is computed with relative error <= 4U over the magnitudes of its products,
@@ -213,6 +192,111 @@ fn analyse_mesh(scene: &Scene, faces: &[Face], canon: &[u32]) -> MeshAnalysis {
     }
 }
 
+/// The undirected edges of `faces` (vertices by `canon`) used by one face, by more than two,
+/// and by two that run the same way: (boundary, nonmanifold, inconsistent).
+fn edge_counts(scene: &Scene, faces: &[Face], canon: &[u32]) -> (usize, usize, usize) {
+    edge_counts_by(scene, faces, canon, true)
+}
+
+/// [`edge_counts`], by buckets where `buckets` allows and the mesh suits them, else by one sort.
+fn edge_counts_by(
+    scene: &Scene,
+    faces: &[Face],
+    canon: &[u32],
+    buckets: bool,
+) -> (usize, usize, usize) {
+    // Each directed edge of a face as (low vertex, high vertex, whether it runs upward).
+    let edges_of = |f: &Face| {
+        let c = scene.face_corners(f);
+        (0..c.len()).map(move |k| {
+            let u = canon[c[k] as usize];
+            let v = canon[c[(k + 1) % c.len()] as usize];
+            (u.min(v), u.max(v), u < v)
+        })
+    };
+    let (lowest, highest) = (faces.par_iter())
+        .map(|f| {
+            let ids = scene.face_corners(f).iter().map(|&k| canon[k as usize]);
+            (
+                ids.clone().min().unwrap_or(u32::MAX),
+                ids.max().unwrap_or(0),
+            )
+        })
+        .reduce(|| (u32::MAX, 0), |a, b| (a.0.min(b.0), a.1.max(b.1)));
+    if lowest > highest {
+        return (0, 0, 0);
+    }
+    let span = (highest - lowest) as usize + 1;
+    let edge_count: usize = faces.iter().map(|f| f.len as usize).sum();
+    let tally = |groups: &mut dyn Iterator<Item = &[u64]>| {
+        let mut counts = (0, 0, 0);
+        for group in groups {
+            match group {
+                [_] => counts.0 += 1,
+                [a, b] if a == b => counts.2 += 1,
+                [_, _] => {}
+                _ => counts.1 += 1,
+            }
+        }
+        counts
+    };
+    let add =
+        |a: (usize, usize, usize), b: (usize, usize, usize)| (a.0 + b.0, a.1 + b.1, a.2 + b.2);
+    if !buckets || span > 2 * edge_count || edge_count >= u32::MAX as usize {
+        // Few vertices of a large id range (one mesh among many), or more edges than the
+        // counting sort's u32 offsets hold: one sort of the packed edges (low vertex: 31 bits,
+        // high vertex: 32 bits, direction: 1 bit).
+        let mut packed: Vec<u64> = (faces.par_iter())
+            .flat_map_iter(|f| {
+                edges_of(f).map(|(lo, hi, up)| (lo as u64) << 33 | (hi as u64) << 1 | up as u64)
+            })
+            .collect();
+        packed.par_sort_unstable();
+        return tally(&mut packed.chunk_by(|a, b| a >> 1 == b >> 1));
+    }
+    // The mesh's vertices are about as many as its edges: a counting sort by the low end puts
+    // the uses of each edge in one bucket of a few (a sort of all the edges took longer). On
+    // all cores: each chunk of faces sorts its own edges so, then each bucket gathers its
+    // entries from every chunk. Entries: the high end, then the direction.
+    let sorted: Vec<(Vec<u32>, Vec<u64>)> = (faces
+        .par_chunks(faces.len().div_ceil(rayon::current_num_threads()).max(1)))
+    .map(|chunk| {
+        let mut start = vec![0u32; span + 1];
+        for (lo, _, _) in chunk.iter().flat_map(edges_of) {
+            start[(lo - lowest) as usize + 1] += 1;
+        }
+        for b in 1..start.len() {
+            start[b] += start[b - 1];
+        }
+        let mut next = start.clone();
+        let mut entries = vec![0u64; start[span] as usize];
+        for (lo, hi, up) in chunk.iter().flat_map(edges_of) {
+            let at = &mut next[(lo - lowest) as usize];
+            entries[*at as usize] = (hi as u64) << 1 | up as u64;
+            *at += 1;
+        }
+        (start, entries)
+    })
+    .collect();
+    (0..span)
+        .into_par_iter()
+        .with_min_len(4096)
+        .fold(
+            || ((0, 0, 0), Vec::new()),
+            |(counts, mut bucket), b| {
+                bucket.clear();
+                for (start, entries) in &sorted {
+                    bucket.extend_from_slice(&entries[start[b] as usize..start[b + 1] as usize]);
+                }
+                bucket.sort_unstable();
+                let more = tally(&mut bucket.chunk_by(|a, b| a >> 1 == b >> 1));
+                (add(counts, more), bucket)
+            },
+        )
+        .map(|(counts, _)| counts)
+        .reduce(|| (0, 0, 0), add)
+}
+
 /// Component-wise |b.y·c.z| + |b.z·c.y|, ...: bounds the magnitude of the products in b × c.
 fn abs_cross_bound(b: DVec3, c: DVec3) -> DVec3 {
     let (b, c) = (b.abs(), c.abs());
@@ -227,6 +311,46 @@ fn abs_cross_bound(b: DVec3, c: DVec3) -> DVec3 {
 mod tests {
     use super::*;
     use crate::scene::SceneBuilder;
+
+    /// The buckets count what the sort of all edges counts: random faces over a few vertices,
+    /// some at one position (welded), so edges repeat both ways, the same way, and thrice.
+    #[test]
+    fn edge_counts_by_buckets_are_those_by_one_sort() {
+        let mut rng = crate::stress::rng::Rng::of(&[0xed9e_c0de]);
+        let (mut boundary, mut inconsistent, mut nonmanifold) = (0, 0, 0);
+        for case in 0..200 {
+            let mut b = SceneBuilder::new("soup");
+            let vertices = 4 + rng.next_u64() % 8;
+            for k in 0..vertices {
+                // Vertices 0 and 1 at one position.
+                let k = if k == 1 { 0 } else { k };
+                b.add_vertex(DVec3::new(k as f64, (k * k % 5) as f64, (k % 3) as f64));
+            }
+            let m = b.default_material();
+            for _ in 0..1 + rng.next_u64() % 12 {
+                let mut face: Vec<u32> = Vec::new();
+                while face.len() < 3 {
+                    let v = (rng.next_u64() % vertices) as u32;
+                    if !face.contains(&v) {
+                        face.push(v);
+                    }
+                }
+                b.add_face(&face, m);
+            }
+            let Some(scene) = b.finish() else { continue };
+            let canon = weld(&scene.positions);
+            let want = edge_counts_by(&scene, &scene.faces, &canon, false);
+            assert_eq!(
+                edge_counts_by(&scene, &scene.faces, &canon, true),
+                want,
+                "case {case}"
+            );
+            boundary += want.0;
+            nonmanifold += want.1;
+            inconsistent += want.2;
+        }
+        assert!(boundary > 100 && nonmanifold > 20 && inconsistent > 20);
+    }
 
     fn cube(flip: bool, drop_one: bool) -> Scene {
         let mut b = SceneBuilder::new("cube");
