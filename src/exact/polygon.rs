@@ -1006,14 +1006,16 @@ impl<'a> CornerLines<'a> {
     /// of the other on its closed outer side (touching allowed).
     #[inline]
     pub fn separated(self, other: CornerLines) -> bool {
+        other.excludes(self.corners) || self.excludes(other.corners)
+    }
+
+    /// Has one of the polygon's edge lines all of `corners` on its closed outer side? (Then a
+    /// convex polygon with those corners has no interior point in common with this one.)
+    #[inline]
+    pub fn excludes(self, corners: &[[i64; 2]]) -> bool {
         // Each line's corners are all tested, with no early exit: the three or so products
         // cost less than the branches a short-circuit would mispredict.
-        let excludes = |lines: &[EdgeLine], corners: &[[i64; 2]]| {
-            lines
-                .iter()
-                .any(|l| corners.iter().fold(true, |out, &v| out & (l.at(v) <= 0)))
-        };
-        excludes(other.lines, self.corners) || excludes(self.lines, other.corners)
+        (self.lines.iter()).any(|l| corners.iter().fold(true, |out, &v| out & (l.at(v) <= 0)))
     }
 }
 
