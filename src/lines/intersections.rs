@@ -201,13 +201,23 @@ fn overlapping_pairs_splitting_at<T: Send>(
         return Vec::new();
     }
     let mut ids: Vec<u32> = (0..boxes.len() as u32).collect();
-    let mut nodes = Vec::new();
     // Twice the box centres, made once (the median splits compare them many times).
     let centres: Vec<[f64; 3]> = boxes
         .iter()
         .map(|b| [b[0] + b[3], b[1] + b[4], b[2] + b[5]])
         .collect();
-    build(boxes, &centres, &mut ids, 0, &mut nodes);
+    let empty = Node {
+        bounds: [0.0; 6],
+        children: None,
+        run: (0, 0),
+    };
+    let mut nodes = vec![empty; node_count(boxes.len())];
+    let tree = Subtree {
+        boxes,
+        centres: &centres,
+        parallel_boxes,
+    };
+    tree.build(&mut ids, 0, &mut nodes, 0);
     let tree = Hierarchy {
         nodes: &nodes,
         ids: &ids,
@@ -218,6 +228,7 @@ fn overlapping_pairs_splitting_at<T: Send>(
 }
 
 /// A node of the hierarchy: its box, and either its two children or its run of `ids`.
+#[derive(Clone)]
 struct Node {
     bounds: [f64; 6],
     children: Option<(usize, usize)>,
@@ -230,13 +241,19 @@ const LEAF: usize = 8;
 const PARALLEL_BOXES: usize = 4096;
 
 fn union(boxes: &[[f64; 6]], ids: &[u32]) -> [f64; 6] {
-    let mut u = [f64::MAX, f64::MAX, f64::MAX, f64::MIN, f64::MIN, f64::MIN];
-    for &i in ids {
-        let b = &boxes[i as usize];
-        for k in 0..3 {
-            u[k] = u[k].min(b[k]);
-            u[k + 3] = u[k + 3].max(b[k + 3]);
-        }
+    ids.iter()
+        .fold(EMPTY_BOX, |u, &i| joined(&u, &boxes[i as usize]))
+}
+
+/// The box holding no point: the identity of [`joined`].
+const EMPTY_BOX: [f64; 6] = [f64::MAX, f64::MAX, f64::MAX, f64::MIN, f64::MIN, f64::MIN];
+
+/// The smallest box holding both.
+fn joined(a: &[f64; 6], b: &[f64; 6]) -> [f64; 6] {
+    let mut u = *a;
+    for k in 0..3 {
+        u[k] = u[k].min(b[k]);
+        u[k + 3] = u[k + 3].max(b[k + 3]);
     }
     u
 }
@@ -245,22 +262,39 @@ fn meet(a: &[f64; 6], b: &[f64; 6]) -> bool {
     (0..3).all(|k| a[k] <= b[k + 3] && b[k] <= a[k + 3])
 }
 
-/// Builds the subtree over `ids` (starting at `offset` in the whole list); returns its index.
-fn build(
-    boxes: &[[f64; 6]],
-    centres: &[[f64; 3]],
-    ids: &mut [u32],
-    offset: usize,
-    nodes: &mut Vec<Node>,
-) -> usize {
-    let at = nodes.len();
-    nodes.push(Node {
-        bounds: union(boxes, ids),
-        children: None,
-        run: (offset, offset + ids.len()),
-    });
-    if ids.len() > LEAF {
-        let centre = |i: u32, k: usize| centres[i as usize][k];
+/// How many nodes the hierarchy over `boxes` boxes has: one, or one and its halves'.
+fn node_count(boxes: usize) -> usize {
+    if boxes <= LEAF {
+        1
+    } else {
+        1 + node_count(boxes / 2) + node_count(boxes - boxes / 2)
+    }
+}
+
+/// What building a hierarchy reads.
+struct Subtree<'a> {
+    boxes: &'a [[f64; 6]],
+    centres: &'a [[f64; 3]],
+    /// Subtrees of at least this many boxes build their halves side by side.
+    parallel_boxes: usize,
+}
+
+impl Subtree<'_> {
+    /// Builds the subtree over `ids` (starting at `offset` in the whole list) into `nodes`, its
+    /// [`node_count`] nodes in pre-order, the first numbered `at` in the whole hierarchy: the
+    /// numbering of building it depth first, with each half's nodes known in advance, so the
+    /// halves build side by side into their own parts of the list.
+    fn build(&self, ids: &mut [u32], offset: usize, nodes: &mut [Node], at: usize) {
+        let run = (offset, offset + ids.len());
+        if ids.len() <= LEAF {
+            nodes[0] = Node {
+                bounds: union(self.boxes, ids),
+                children: None,
+                run,
+            };
+            return;
+        }
+        let centre = |i: u32, k: usize| self.centres[i as usize][k];
         // The axis along which the box centres spread most.
         let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
         for &i in ids.iter() {
@@ -276,12 +310,27 @@ fn build(
         ids.select_nth_unstable_by(mid, |&a, &b| {
             centre(a, axis).total_cmp(&centre(b, axis)).then(a.cmp(&b))
         });
+        let parallel = ids.len() >= self.parallel_boxes;
         let (left, right) = ids.split_at_mut(mid);
-        let l = build(boxes, centres, left, offset, nodes);
-        let r = build(boxes, centres, right, offset + mid, nodes);
-        nodes[at].children = Some((l, r));
+        let (root, below) = nodes.split_first_mut().expect("a node for the root");
+        let (left_nodes, right_nodes) = below.split_at_mut(node_count(mid));
+        let (l, r) = (at + 1, at + 1 + left_nodes.len());
+        if parallel {
+            rayon::join(
+                || self.build(left, offset, left_nodes, l),
+                || self.build(right, offset + mid, right_nodes, r),
+            );
+        } else {
+            self.build(left, offset, left_nodes, l);
+            self.build(right, offset + mid, right_nodes, r);
+        }
+        // Min and max are exact: the halves' bounds joined are the union of all the boxes.
+        *root = Node {
+            bounds: joined(&left_nodes[0].bounds, &right_nodes[0].bounds),
+            children: Some((l, r)),
+            run,
+        };
     }
-    at
 }
 
 /// A built hierarchy, read by the joins.
