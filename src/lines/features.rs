@@ -89,20 +89,8 @@ pub fn weld(positions: &[DVec3]) -> (Vec<u32>, Vec<u32>) {
 /// degrees.
 pub fn features(scene: &Scene, screen: &ScreenScene, crease_deg: f64) -> Features {
     let (weld_id, first) = weld(&scene.positions);
-    // (smaller id, larger id, face, k, the side runs from the smaller to the larger)
-    let mut sides: Vec<(u32, u32, u32, u32, bool)> = Vec::with_capacity(scene.corners.len());
-    for (fi, face) in scene.faces.iter().enumerate() {
-        let corners = scene.face_corners(face);
-        let n = corners.len();
-        for k in 0..n {
-            let a = weld_id[corners[k] as usize];
-            let b = weld_id[corners[(k + 1) % n] as usize];
-            if a != b {
-                sides.push((a.min(b), a.max(b), fi as u32, k as u32, a < b));
-            }
-        }
-    }
-    sides.sort_unstable();
+    // (smaller id, larger id, face, k, the side runs from the smaller to the larger), sorted.
+    let sides = sorted_sides(scene, &weld_id, first.len());
     let cos_crease = crease_deg.to_radians().cos();
     let normals: Vec<DVec3> = scene.faces.iter().map(|f| scene.face_normal(f)).collect();
     let mut edges = Vec::new();
@@ -139,6 +127,42 @@ pub fn features(scene: &Scene, screen: &ScreenScene, crease_deg: f64) -> Feature
         vertices: first.len(),
         weld: weld_id,
     }
+}
+
+/// Every face side between two welded vertices (`weld_id`, below `ids`) as (smaller id,
+/// larger id, face, k, whether it runs from the smaller to the larger), in ascending order. By
+/// a counting sort on the smaller id (the ids are dense), then each id's few sides sorted: a
+/// sort of all the sides took most of the feature search.
+fn sorted_sides(scene: &Scene, weld_id: &[u32], ids: usize) -> Vec<(u32, u32, u32, u32, bool)> {
+    let sides = || {
+        scene.faces.iter().enumerate().flat_map(|(fi, face)| {
+            let corners = scene.face_corners(face);
+            let n = corners.len();
+            (0..n).filter_map(move |k| {
+                let a = weld_id[corners[k] as usize];
+                let b = weld_id[corners[(k + 1) % n] as usize];
+                (a != b).then_some((a.min(b), a.max(b), fi as u32, k as u32, a < b))
+            })
+        })
+    };
+    let mut start = vec![0usize; ids + 1];
+    for s in sides() {
+        start[s.0 as usize + 1] += 1;
+    }
+    for k in 1..start.len() {
+        start[k] += start[k - 1];
+    }
+    let mut sorted = vec![(0, 0, 0, 0, false); start[ids]];
+    let mut next = start.clone();
+    for s in sides() {
+        let at = &mut next[s.0 as usize];
+        sorted[*at] = s;
+        *at += 1;
+    }
+    for ends in start.windows(2) {
+        sorted[ends[0]..ends[1]].sort_unstable();
+    }
+    sorted
 }
 
 /// The kind of an edge of two faces, if it is a feature.
@@ -183,6 +207,53 @@ fn classify_two(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The counting sort gives the order of one sort of every side: random faces over a few
+    /// welded vertices, sides repeated both ways and degenerate ones (two corners welded).
+    #[test]
+    fn sides_come_sorted_as_one_sort_sorts_them() {
+        use crate::scene::SceneBuilder;
+        let mut rng = crate::stress::rng::Rng::of(&[0x51de5]);
+        for case in 0..200 {
+            let mut b = SceneBuilder::new("soup");
+            let vertices = 3 + rng.next_u64() % 9;
+            for k in 0..vertices {
+                b.add_vertex(DVec3::new(
+                    (k % 5) as f64,
+                    (k * k % 7) as f64,
+                    0.5 * k as f64,
+                ));
+            }
+            let m = b.default_material();
+            for _ in 0..1 + rng.next_u64() % 10 {
+                let face: Vec<u32> = (0..3 + rng.next_u64() % 2)
+                    .map(|_| (rng.next_u64() % vertices) as u32)
+                    .collect();
+                b.add_face(&face, m);
+            }
+            let Some(scene) = b.finish() else { continue };
+            let (weld_id, first) = weld(&scene.positions);
+            let mut want = Vec::new();
+            for (fi, face) in scene.faces.iter().enumerate() {
+                let c = scene.face_corners(face);
+                for k in 0..c.len() {
+                    let (a, b) = (
+                        weld_id[c[k] as usize],
+                        weld_id[c[(k + 1) % c.len()] as usize],
+                    );
+                    if a != b {
+                        want.push((a.min(b), a.max(b), fi as u32, k as u32, a < b));
+                    }
+                }
+            }
+            want.sort_unstable();
+            assert_eq!(
+                sorted_sides(&scene, &weld_id, first.len()),
+                want,
+                "case {case}"
+            );
+        }
+    }
 
     #[test]
     fn welding_joins_identical_positions_and_signed_zeros() {
