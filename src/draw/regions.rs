@@ -382,6 +382,16 @@ impl<T> PerVertex<T> {
     /// Appends piece `a = self.len()`'s values.
     pub fn push_piece(&mut self, values: impl IntoIterator<Item = T>) {
         self.values.extend(values);
+        self.end_piece();
+    }
+
+    /// Appends a value of the piece being added, which [`Self::end_piece`] closes.
+    pub fn push_value(&mut self, value: T) {
+        self.values.push(value);
+    }
+
+    /// Closes the piece being added: its values are those pushed since the last piece.
+    pub fn end_piece(&mut self) {
         self.start.push(self.values.len());
     }
 
@@ -454,21 +464,18 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
     };
     let mut next = 0u32;
     let mut largest = 0.0f64;
-    // One piece's named vertices and the ones named first here that are no grid points
-    // (reused: the piece is pushed whole once named, since the tables read only the pieces
-    // before it).
-    let (mut pixels, mut ids, mut new_off_grid) = (Vec::new(), Vec::new(), Vec::new());
+    // The piece's vertices named first here that are no grid points (reused). Each vertex's
+    // pixel and id go straight to `out`: the tables read only the pieces before this one.
+    let mut new_off_grid = Vec::new();
     for (a, pa) in pieces.iter().enumerate() {
-        pixels.clear();
-        ids.clear();
         new_off_grid.clear();
-        let named = |(b, v): (u32, u32)| {
-            (
-                out.pixels[b as usize][v as usize],
-                out.ids[b as usize][v as usize],
-            )
-        };
         for k in 0..pa.len() {
+            let named = |(b, v): (u32, u32)| {
+                (
+                    out.pixels[b as usize][v as usize],
+                    out.ids[b as usize][v as usize],
+                )
+            };
             let (known, grid_point) = match pa.corner(k) {
                 Some(g) => (at_grid_point.get(&g).copied().map(named), Some(g)),
                 None => {
@@ -504,15 +511,15 @@ pub fn shared_vertices(pieces: &[Piece], s: &Samples) -> Vertices {
                 }
                 (p, next - 1)
             });
-            pixels.push(p);
-            ids.push(id);
+            out.pixels.push_value(p);
+            out.ids.push_value(id);
         }
         // Entered after the piece: a piece's own vertices are distinct points.
         for &k in &new_off_grid {
             near.insert(pa.point(k), a, k);
         }
-        out.pixels.push_piece(pixels.iter().copied());
-        out.ids.push_piece(ids.iter().copied());
+        out.pixels.end_piece();
+        out.ids.end_piece();
     }
     out.partners = edge_partners(&out.ids, next as usize);
     out.pixel_error = pixel_error(s, largest);
