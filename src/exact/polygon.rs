@@ -1013,9 +1013,9 @@ impl<'a> CornerLines<'a> {
     /// convex polygon with those corners has no interior point in common with this one.)
     #[inline]
     pub fn excludes(self, corners: &[[i64; 2]]) -> bool {
-        // Each line's corners are all tested, with no early exit: the three or so products
-        // cost less than the branches a short-circuit would mispredict.
-        (self.lines.iter()).any(|l| corners.iter().fold(true, |out, &v| out & (l.at(v) <= 0)))
+        // A line stops at the first corner strictly inside it: testing every corner without a
+        // branch was slower (the 1M sphere's bsp stage by 11-13 %, one thread).
+        (self.lines.iter()).any(|l| corners.iter().all(|&v| l.at(v) <= 0))
     }
 }
 
