@@ -1002,6 +1002,11 @@ impl<'a> CornerLines<'a> {
         CornerLines { corners, lines }
     }
 
+    /// The polygon's corners.
+    pub fn corners(self) -> &'a [[i64; 2]] {
+        self.corners
+    }
+
     /// Do the two polygons have disjoint interiors? Exact: an edge line of one has every corner
     /// of the other on its closed outer side (touching allowed).
     #[inline]

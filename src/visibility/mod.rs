@@ -220,12 +220,12 @@ impl<'p> Outline<'p> {
     /// [`separated_on`] of the piece and `q`.
     pub(crate) fn separated_from(&self, screen: &ScreenScene, q: &Piece) -> bool {
         let q_corners = q.grid_corners();
-        // The piece's own lines first: when one excludes `q`, `q`'s are never made.
         if let Some(own) = &self.corners
             && let Some(c) = &q_corners
-            && own.view().excludes(c)
         {
-            return true;
+            // The piece's own lines first: when one excludes `q`, `q`'s are never made.
+            let own = own.view();
+            return own.excludes(c) || CornerOutline::of(c).view().excludes(own.corners());
         }
         let q_corners = q_corners.map(|c| CornerOutline::of(&c));
         self.separated_from_with(screen, q, q_corners.as_ref().map(CornerOutline::view))
