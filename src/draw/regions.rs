@@ -593,17 +593,12 @@ fn edge_partners(ids: &PerVertex<u32>, id_count: usize) -> Vec<u32> {
         if bucket.len() < 2 {
             continue;
         }
-        // As `cancelling_pairs` orders one pair of ends: forward edges, then backward ones,
-        // each by number, the k-th of each paired.
+        // Ordered as `cancelling_pairs` orders the edges between one pair of ends.
         bucket.sort_unstable();
-        for run in bucket.chunk_by(|x, y| x.0 == y.0) {
-            let split = run.partition_point(|x| !x.1);
-            let (forward, backward) = run.split_at(split);
-            for (f, b) in forward.iter().zip(backward) {
-                let (e, f) = (f.2 as usize, b.2 as usize);
-                partners[e] = piece_of[f];
-                partners[f] = piece_of[e];
-            }
+        for (e, f) in paired_in_runs(bucket) {
+            let (e, f) = (e as usize, f as usize);
+            partners[e] = piece_of[f];
+            partners[f] = piece_of[e];
         }
     }
     partners
@@ -1078,13 +1073,19 @@ fn cancelling_pairs<E: Copy + Ord + Send>(
     keyed.extend(edges.map(|((a, b), e)| (((a.min(b) as u64) << 32) | a.max(b) as u64, a > b, e)));
     // The names are distinct: one order whatever the sort.
     keyed.par_sort_unstable();
-    let mut pairs = Vec::new();
-    for run in keyed.chunk_by(|x, y| x.0 == y.0) {
-        let split = run.partition_point(|x| !x.1);
-        let (forward, backward) = run.split_at(split);
-        pairs.extend(forward.iter().zip(backward).map(|(f, b)| (f.2, b.2)));
-    }
-    pairs
+    paired_in_runs(&keyed).collect()
+}
+
+/// The cancelling pairs of `sorted` edges, each (the two ends' name; whether the edge runs
+/// from the larger end; the edge) in ascending order: within a run of one name, the k-th edge
+/// running forward with the k-th running backward.
+fn paired_in_runs<K: PartialEq, E: Copy>(
+    sorted: &[(K, bool, E)],
+) -> impl Iterator<Item = (E, E)> + '_ {
+    sorted.chunk_by(|x, y| x.0 == y.0).flat_map(|run| {
+        let (forward, backward) = run.split_at(run.partition_point(|x| !x.1));
+        forward.iter().zip(backward).map(|(f, b)| (f.2, b.2))
+    })
 }
 
 /// The boundary of a union as a graph: its vertices (exact ids), the edges leaving each, and
