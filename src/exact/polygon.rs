@@ -915,7 +915,9 @@ pub fn separated_at_corners(p: &Piece, q: &Piece) -> Option<bool> {
 /// [`separated_at_corners`] on the pieces' [`Piece::grid_corners`] (for a caller testing each
 /// piece against many: [`CornerLines`] keeps the edge lines too).
 pub fn corners_separated(pc: &[[i64; 2]], qc: &[[i64; 2]]) -> bool {
-    (CornerOutline::of(pc).view()).separated(CornerOutline::of(qc).view())
+    // `p`'s lines are made only when `q`'s leave it undecided.
+    CornerLines::new(qc, &edge_lines(qc)).excludes(pc)
+        || CornerLines::new(pc, &edge_lines(pc)).excludes(qc)
 }
 
 /// The line through an edge of a convex grid polygon as `a·x + b·y + c`: positive strictly
@@ -963,6 +965,13 @@ pub fn push_edge_lines(corners: &[[i64; 2]], out: &mut impl Extend<EdgeLine>) {
     }));
 }
 
+/// [`push_edge_lines`] of one polygon, for a test or a few.
+pub fn edge_lines(corners: &[[i64; 2]]) -> SmallVec<[EdgeLine; 6]> {
+    let mut lines = SmallVec::new();
+    push_edge_lines(corners, &mut lines);
+    lines
+}
+
 /// A convex grid polygon's corners with its [`push_edge_lines`], owned: see [`CornerLines`].
 #[derive(Clone, Debug)]
 pub struct CornerOutline {
@@ -973,11 +982,9 @@ pub struct CornerOutline {
 impl CornerOutline {
     /// The convex polygon with these corners (either turn).
     pub fn of(corners: &[[i64; 2]]) -> Self {
-        let mut lines = SmallVec::new();
-        push_edge_lines(corners, &mut lines);
         CornerOutline {
             corners: SmallVec::from_slice(corners),
-            lines,
+            lines: edge_lines(corners),
         }
     }
 

@@ -48,7 +48,8 @@ pub use warnock_exact::WarnockExact;
 pub use weiler_atherton::WeilerAtherton;
 
 use crate::exact::polygon::{
-    Boundary, CornerLines, CornerOutline, EdgeLine, Piece, convex_piece_indices, push_edge_lines,
+    Boundary, CornerLines, CornerOutline, EdgeLine, Piece, convex_piece_indices, edge_lines,
+    push_edge_lines,
 };
 use crate::exact::{GridPoint, Samples};
 use crate::progress::Report;
@@ -225,7 +226,7 @@ impl<'p> Outline<'p> {
         {
             // The piece's own lines first: when one excludes `q`, `q`'s are never made.
             let own = own.view();
-            return own.excludes(c) || CornerOutline::of(c).view().excludes(own.corners());
+            return own.excludes(c) || CornerLines::new(c, &edge_lines(c)).excludes(own.corners());
         }
         let q_corners = q_corners.map(|c| CornerOutline::of(&c));
         self.separated_from_with(screen, q, q_corners.as_ref().map(CornerOutline::view))
