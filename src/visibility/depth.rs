@@ -102,24 +102,97 @@ impl Farthest {
     }
 
     /// An upper bound of the piece's depth within the rectangle `rect` (x0, y0, x1, y1, exact
-    /// integers in f64): the plane's largest value over the rectangle shared by `rect` and the
-    /// piece's bounds (a linear function: at a corner, exact there), never beyond the polygon's
-    /// farthest corner.
+    /// integers in f64): the plane's value, with its error bound, at the corner of the rectangle
+    /// shared by `rect` and the piece's bounds where the plane is deepest, never beyond the
+    /// polygon's farthest corner. The depth is linear, `z = -(a·x + b·y + d) / c`: it grows
+    /// with x where `a` and `c` have opposite signs, and rounding keeps each coefficient's sign
+    /// (and zero), so that corner is found exactly and is the rectangle's deepest point.
     pub fn within(&self, rect: [f64; 4]) -> f64 {
         let b = self.bounds;
-        let (x0, y0, x1, y1) = (
-            rect[0].max(b[0]),
-            rect[1].max(b[1]),
-            rect[2].min(b[2]),
-            rect[3].min(b[3]),
-        );
-        let far = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
-            .into_iter()
-            .map(|(x, y)| {
-                let (z, err) = self.plane.depth([x, y, 0.0]);
-                z + err
-            })
-            .fold(f64::MIN, f64::max);
-        far.min(self.hi)
+        let PlaneF64 { a, b: pb, c, .. } = self.plane;
+        let deeper_right = (a < 0.0) == (c > 0.0) && a != 0.0;
+        let deeper_down = (pb < 0.0) == (c > 0.0) && pb != 0.0;
+        let x = if deeper_right {
+            rect[2].min(b[2])
+        } else {
+            rect[0].max(b[0])
+        };
+        let y = if deeper_down {
+            rect[3].min(b[3])
+        } else {
+            rect[1].max(b[1])
+        };
+        let (z, err) = self.plane.depth([x, y, 0.0]);
+        (z + err).min(self.hi)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exact::{GridPoint, Plane, w256};
+    use crate::visibility::{initial_pieces, live::bounds, screen_of_polygons};
+    use proptest::prelude::*;
+
+    /// Is the exact depth of `plane` (a support plane: `c > 0`) at (x, y) at most `w`? The
+    /// plane's equation grows with z, so it is when the equation at z = w is not negative:
+    /// `w = ±m·2^e` multiplied out to integers.
+    fn depth_at_most(plane: &Plane, x: i64, y: i64, w: f64) -> bool {
+        assert!(plane.c > 0 && w.is_finite());
+        let bits = w.to_bits();
+        let (exp, frac) = (((bits >> 52) & 0x7ff) as i32, bits & ((1 << 52) - 1));
+        let (m, e) = if exp == 0 {
+            (frac, -1074)
+        } else {
+            (frac | 1 << 52, exp - 1075)
+        };
+        let m = if w < 0.0 { -(m as i128) } else { m as i128 };
+        let rest = w256(plane.a) * w256(x as i128) + w256(plane.b) * w256(y as i128) + plane.d;
+        let cz = w256(plane.c) * w256(m);
+        let value = if e >= 0 {
+            rest + (cz << e as u32)
+        } else {
+            (rest << (-e) as u32) + cz
+        };
+        value >= w256(0)
+    }
+
+    proptest! {
+        /// `within` bounds the piece's plane's exact depth at every corner of the rectangle it
+        /// is asked about (its part within the piece's bounds) unless it is the polygon's
+        /// farthest corner, the deepest corner included: a bound taken at any other corner of
+        /// a slanted plane falls short there.
+        #[test]
+        fn the_farthest_depth_within_a_rectangle_bounds_its_every_corner(
+            corners in prop::array::uniform3((-4096i64..4096, -4096i64..4096, 0i64..1 << 30)),
+            weights in prop::array::uniform3(1i64..100),
+            size in (0i64..64, 0i64..64),
+        ) {
+            let pts: Vec<GridPoint> =
+                corners.iter().map(|&(x, y, z)| GridPoint { x, y, z }).collect();
+            prop_assume!(Plane::of_polygon(&pts).is_some());
+            let s = screen_of_polygons([pts]);
+            let piece = &initial_pieces(&s)[0];
+            let b = bounds(piece);
+            let far = Farthest::of(&s, piece, b);
+            // A small rectangle from a point inside the triangle (mostly within it).
+            let total: i64 = weights.iter().sum();
+            let at = |f: fn(&(i64, i64, i64)) -> i64| {
+                corners.iter().zip(weights).map(|(c, w)| f(c) * w).sum::<i64>() / total
+            };
+            let (x0, y0) = (at(|c| c.0), at(|c| c.1));
+            let (x1, y1) = (x0 + size.0, y0 + size.1);
+            let w = far.within([x0 as f64, y0 as f64, x1 as f64, y1 as f64]);
+            let [bx0, by0, bx1, by1] = far.bounds.map(|v| v as i64);
+            let (cx0, cy0, cx1, cy1) = (x0.max(bx0), y0.max(by0), x1.min(bx1), y1.min(by1));
+            prop_assume!(cx0 <= cx1 && cy0 <= cy1);
+            // The polygon's farthest corner bounds every point of the piece; below it, the
+            // plane itself is bounded over the rectangle.
+            let hi = corners.iter().map(|c| c.2).max().unwrap();
+            prop_assume!(w < hi as f64);
+            for (x, y) in [(cx0, cy0), (cx1, cy0), (cx1, cy1), (cx0, cy1)] {
+                prop_assert!(depth_at_most(&piece.support, x, y, w), "({x}, {y}) deeper than {w}");
+            }
+        }
     }
 }
