@@ -28,7 +28,7 @@
 use super::depth;
 use super::live::bounds;
 use super::pieces_of;
-use super::strips::pop_giving_back;
+use super::strips::appended;
 use crate::exact::polygon::Piece;
 use crate::project::ScreenScene;
 use rayon::prelude::*;
@@ -91,36 +91,22 @@ pub(crate) fn unhidden_pieces(screen: &ScreenScene, polys: &[u32]) -> (Vec<Piece
     (unhidden, dropped)
 }
 
-/// Two lists of pieces, each in increasing polygon order, as one in that order (the order the
-/// pieces of all polygons together would have; `a`'s first where a polygon is in both). Filled
-/// from the end, the inputs popped from theirs and giving back their room as they empty, then
-/// reversed: the inputs and the result are never all whole in memory (on an open mesh of a
-/// million triangles, a second whole list of pieces was the process's peak).
+/// Two lists of pieces, each in increasing polygon order and no polygon in both, as one in that
+/// order (the order the pieces of all polygons together would have).
 pub(crate) fn merged(a: Vec<Piece>, b: Vec<Piece>) -> Vec<Piece> {
     merged_by(a, b, |p| p.poly)
 }
 
-/// [`merged`] of any lists ordered by `key`.
-fn merged_by<T>(mut a: Vec<T>, mut b: Vec<T>, key: impl Fn(&T) -> u32) -> Vec<T> {
-    if b.is_empty() {
-        return a;
-    }
-    if a.is_empty() {
-        return b;
-    }
-    let mut out = Vec::with_capacity(a.len() + b.len());
-    loop {
-        let from_b = match (a.last(), b.last()) {
-            (Some(p), Some(q)) => key(q) >= key(p),
-            (Some(_), None) => false,
-            (None, Some(_)) => true,
-            (None, None) => break,
-        };
-        let list = if from_b { &mut b } else { &mut a };
-        out.extend(pop_giving_back(list));
-    }
-    out.reverse();
-    out
+/// [`merged`] of any lists ordered by `key`, no key in both. The shorter is appended to the
+/// longer and the two runs merged in place by the standard library's stable sort (the order
+/// of equal keys within a list is kept): only the longer list's elements past the shorter's
+/// first key move, once each, within room already in memory. (Popping both into a new list
+/// faulted in its pages one by one, then reversed it: on the 1M sphere's 400k pieces a
+/// serial 50 ms.)
+fn merged_by<T>(a: Vec<T>, b: Vec<T>, key: impl Fn(&T) -> u32) -> Vec<T> {
+    let mut all = appended(a, b);
+    all.sort_by_key(key);
+    all
 }
 
 /// Per polygon of `screen`: is it seen from the back (`ScreenPoly::front`)?
@@ -533,8 +519,8 @@ mod tests {
         ]
     }
 
-    /// Two ordered lists merged from their ends: the order a forward merge gives (the first
-    /// list first among equal keys), whichever is longer, with either empty.
+    /// Two ordered lists with no key in common merged: the order of a forward merge, each
+    /// list's equal keys in their order, whichever is longer, with either empty.
     #[test]
     fn merged_lists_keep_the_order_of_a_forward_merge() {
         let forward = |a: &[(u32, char)], b: &[(u32, char)]| {
@@ -542,14 +528,15 @@ mod tests {
             all.sort_by_key(|x| x.0); // stable: a's before b's among equal keys
             all
         };
-        let a = vec![(1, 'a'), (3, 'a'), (3, 'a'), (4, 'a'), (9, 'a')];
-        let b = vec![(0, 'b'), (3, 'b'), (5, 'b'), (9, 'b'), (12, 'b')];
+        let a = vec![(1, 'p'), (3, 'r'), (3, 'q'), (4, 's'), (9, 't')];
+        let b = vec![(0, 'u'), (5, 'w'), (5, 'v'), (8, 'y'), (12, 'x'), (12, 'z')];
         for (x, y) in [
             (a.clone(), b.clone()),
             (b.clone(), a.clone()),
             (a.clone(), Vec::new()),
             (Vec::new(), b.clone()),
             (a[..1].to_vec(), b.clone()),
+            (b.clone(), a[3..].to_vec()),
         ] {
             let want = forward(&x, &y);
             assert_eq!(merged_by(x, y, |p| p.0), want);

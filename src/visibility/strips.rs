@@ -265,9 +265,9 @@ pub(crate) fn pop_giving_back<T>(list: &mut Vec<T>) -> Option<T> {
     last
 }
 
-/// Two lists of pieces as one: the shorter appended to the longer (a long list grows in place,
+/// Two lists as one: the shorter appended to the longer (a long list grows in place,
 /// its pages remapped, not copied). Deterministic: the same lists give the same order.
-pub(crate) fn appended(a: Vec<Piece>, b: Vec<Piece>) -> Vec<Piece> {
+pub(crate) fn appended<T>(a: Vec<T>, b: Vec<T>) -> Vec<T> {
     let (mut long, mut short) = if a.len() >= b.len() { (a, b) } else { (b, a) };
     long.append(&mut short);
     long
