@@ -32,10 +32,8 @@ use super::strips::appended;
 use crate::exact::polygon::Piece;
 use crate::project::ScreenScene;
 use rayon::prelude::*;
-use rustc_hash::FxBuildHasher;
 use smallvec::SmallVec;
 use std::cmp::Ordering;
-use std::hash::BuildHasher;
 
 /// Occlusion cells per piece (about): finer cells follow the contour more closely but cost more
 /// to fill; one per piece measured best on the bunny and the teapot (0.25 and 4 did worse).
@@ -173,64 +171,11 @@ impl Occlusion {
             far: vec![f64::NEG_INFINITY; grid.len()],
             back_facing: Vec::new(),
         };
-        // Cells a contour side may meet are not covered (NaN marks them until the end). A
-        // contour side is one that no front polygon runs along the other way: the sides, by
-        // their ends in one order, then by direction, come in runs of one segment. Sorted by a
-        // hash of the segment (16 bytes a side; a hash set of the sides' ends took 140 MB at its
-        // peak on a million triangles, and sorting by the ends themselves looked them up in
-        // every comparison: half of this function's time), then each run of one hash by the
-        // ends, exactly.
-        let ends = |k: u32, i: u32| {
-            let p = &screen.polys[k as usize];
-            let (u, v) = (
-                screen.corner(p, i as usize),
-                screen.corner(p, (i + 1) as usize % p.len as usize),
-            );
-            ([u.x, u.y], [v.x, v.y])
-        };
-        // (the segment, its ends in increasing order; does the side run that way?)
-        let key = |(k, i): (u32, u32)| {
-            let (u, v) = ends(k, i);
-            if u <= v {
-                ([u, v], true)
-            } else {
-                ([v, u], false)
-            }
-        };
-        let mut sides: Vec<(u64, u32, u32)> = (front.par_iter().with_min_len(1024))
-            .flat_map_iter(|&k| {
-                (0..screen.polys[k as usize].len).map(move |i| {
-                    let (segment, _) = key((k, i));
-                    (FxBuildHasher.hash_one(segment), k, i)
-                })
-            })
-            .collect();
-        sides.par_sort_unstable();
-        // The contour sides' segments, found on all cores (each run looks its sides up), then
-        // marked (in any order: a mark is a NaN).
-        let contour: Vec<[[i64; 2]; 2]> = (sides.par_chunk_by(|a, b| a.0 == b.0))
-            .fold(Vec::new, |mut contour, run| {
-                let mut segments: SmallVec<[_; 2]> =
-                    run.iter().map(|&(_, k, i)| key((k, i))).collect();
-                segments.sort_unstable();
-                for same in segments.chunk_by(|a, b| a.0 == b.0) {
-                    let ([u, v], way) = same[0];
-                    // Both ways (the first and last of the run differ), or a side of no
-                    // length: its reverse is itself.
-                    if way == same[same.len() - 1].1 && u != v {
-                        contour.push([u, v]);
-                    }
-                }
-                contour
-            })
-            .reduce(Vec::new, |mut a, mut b| {
-                a.append(&mut b);
-                a
-            });
+        // Cells a contour side may meet are not covered (NaN marks them until the end).
+        let contour = contour_sides(screen, &front);
         for [u, v] in contour {
             grid.segment_cells(u, v, |cell| occlusion.far[cell] = f64::NAN);
         }
-        drop(sides);
         let fronts: Vec<&Piece> = pieces.iter().copied().filter(|p| ccw(p.poly)).collect();
         let inside = occlusion.fill_far_bounds(screen, &fronts);
         for (far, inside) in occlusion.far.iter_mut().zip(inside) {
@@ -383,6 +328,94 @@ impl Occlusion {
         }
         near() > far
     }
+}
+
+/// The contour sides of the polygons `front` (increasing): the segments (grid x, y) along which
+/// they run one way only. Two polygons of one orientation running along a side in opposite
+/// directions lie on its two sides, so the points inside it are inside their union; a side no
+/// other polygon runs along the other way may have the union on one side only. A side of no
+/// length is none.
+///
+/// Most sides are matched by their corners' grid points (`ScreenScene::grid_points`, one per
+/// scene vertex): the sides are counted and placed into buckets by their lower point, and a
+/// bucket's sides by the other point run both ways or not. Only the sides left unmatched are
+/// compared by their coordinates (distinct vertices may snap to one point: unwelded seams).
+/// That second match sees the unmatched sides only: where a segment has sides matched by their
+/// points and others not, those others are contour sides, which only keeps more cells from
+/// being covered. (Sorting every side by a hash of its segment and comparing the segments
+/// again took 148 ms on the 1M sphere on one core; this takes 13-16 ms.)
+fn contour_sides(screen: &ScreenScene, front: &[u32]) -> Vec<[[i64; 2]; 2]> {
+    let points = screen.grid_points.len();
+    assert!(
+        points < (u32::MAX >> 1) as usize,
+        "grid points are numbered in 31 bits"
+    );
+    // Each side as (its lower point, its other point, does it run from the lower one?).
+    let sides = |k: u32| {
+        let c = screen.corner_indices(&screen.polys[k as usize]);
+        (0..c.len()).map(move |i| {
+            let (u, v) = (c[i], c[(i + 1) % c.len()]);
+            (u.min(v), u.max(v), u < v)
+        })
+    };
+    // A counting sort by the lower point: bucket `lo` is `others[starts[lo]..starts[lo + 1]]`,
+    // each entry the other point and the way (lowest bit).
+    let mut starts = vec![0u32; points + 1];
+    for &k in front {
+        for (lo, _, _) in sides(k) {
+            starts[lo as usize + 1] += 1;
+        }
+    }
+    for i in 0..points {
+        starts[i + 1] += starts[i];
+    }
+    let mut others = vec![0u32; starts[points] as usize];
+    let mut next = starts.clone();
+    for &k in front {
+        for (lo, hi, up) in sides(k) {
+            others[next[lo as usize] as usize] = hi << 1 | up as u32;
+            next[lo as usize] += 1;
+        }
+    }
+    drop(next);
+    // Per bucket, the segments whose sides run one way only (a run of one other point and one
+    // way), on all cores.
+    let xy = |i: u32| {
+        let g = screen.grid_points[i as usize];
+        [g.x, g.y]
+    };
+    let mut unmatched: Vec<([[i64; 2]; 2], bool)> = (0..points)
+        .into_par_iter()
+        .with_min_len(4096)
+        .fold(Vec::new, |mut unmatched, lo| {
+            // Buckets are small (six sides at a mesh's vertex on average, half of them here).
+            let mut bucket: SmallVec<[u32; 8]> =
+                SmallVec::from_slice(&others[starts[lo] as usize..starts[lo + 1] as usize]);
+            bucket.sort_unstable();
+            for run in bucket.chunk_by(|a, b| a >> 1 == b >> 1) {
+                let hi = run[0] >> 1;
+                let one_way = run[0] & 1 == run[run.len() - 1] & 1;
+                if one_way && hi != lo as u32 {
+                    // By coordinates from here: (the segment, its ends in increasing order;
+                    // does the side run that way?).
+                    let (u, v, up) = (xy(lo as u32), xy(hi), run[0] & 1 == 1);
+                    unmatched.push(if u <= v { ([u, v], up) } else { ([v, u], !up) });
+                }
+            }
+            unmatched
+        })
+        .reduce(Vec::new, |mut a, mut b| {
+            a.append(&mut b);
+            a
+        });
+    drop(others);
+    // The unmatched sides by their segments: a segment is a contour side when they all run one
+    // way (the first and last of its run agree) and it has a length.
+    unmatched.par_sort_unstable();
+    (unmatched.chunk_by(|a, b| a.0 == b.0))
+        .filter(|run| run[0].1 == run[run.len() - 1].1 && run[0].0[0] != run[0].0[1])
+        .map(|run| run[0].0)
+        .collect()
 }
 
 /// Cells with integer corners over a frame of the screen grid, row by row: cell (i, j) is
