@@ -32,6 +32,7 @@ pub(crate) mod live;
 pub mod newell;
 pub(crate) mod occlusion;
 pub mod painter;
+pub(crate) mod point_pairs;
 pub mod strips;
 pub mod tiling;
 pub mod visible_set;

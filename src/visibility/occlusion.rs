@@ -28,11 +28,11 @@
 use super::depth;
 use super::live::bounds;
 use super::pieces_of;
+use super::point_pairs::{point_pairs, side_key};
 use super::strips::appended;
 use crate::exact::polygon::Piece;
 use crate::project::ScreenScene;
 use rayon::prelude::*;
-use smallvec::SmallVec;
 use std::cmp::Ordering;
 
 /// Occlusion cells per piece (about): finer cells follow the contour more closely but cost more
@@ -336,81 +336,40 @@ impl Occlusion {
 /// other polygon runs along the other way may have the union on one side only. A side of no
 /// length is none.
 ///
-/// Most sides are matched by their corners' grid points (`ScreenScene::grid_points`, one per
-/// scene vertex): the sides are counted and placed into buckets by their lower point, and a
-/// bucket's sides by the other point run both ways or not. Only the sides left unmatched are
-/// compared by their coordinates (distinct vertices may snap to one point: unwelded seams).
-/// That second match sees the unmatched sides only: where a segment has sides matched by their
-/// points and others not, those others are contour sides, which only keeps more cells from
-/// being covered. (Sorting every side by a hash of its segment and comparing the segments
+/// Most sides are matched by their corners' grid points ([`point_pairs`]); only the pairs left
+/// running one way are compared by their coordinates (distinct vertices may snap to one point:
+/// unwelded seams). That second match sees those pairs only: where a segment has sides matched
+/// by their points and others not, those others are contour sides, which only keeps more cells
+/// from being covered. (Sorting every side by a hash of its segment and comparing the segments
 /// again took 148 ms on the 1M sphere on one core; this takes 13-16 ms.)
 fn contour_sides(screen: &ScreenScene, front: &[u32]) -> Vec<[[i64; 2]; 2]> {
-    let points = screen.grid_points.len();
-    assert!(
-        points < (u32::MAX >> 1) as usize,
-        "grid points are numbered in 31 bits"
-    );
-    // Each side as (its lower point, its other point, does it run from the lower one?).
-    let sides = |k: u32| {
-        let c = screen.corner_indices(&screen.polys[k as usize]);
-        (0..c.len()).map(move |i| {
-            let (u, v) = (c[i], c[(i + 1) % c.len()]);
-            (u.min(v), u.max(v), u < v)
+    let keys: Vec<u64> = (front.par_iter().with_min_len(1024))
+        .flat_map_iter(|&k| {
+            let c = screen.corner_indices(&screen.polys[k as usize]);
+            (0..c.len())
+                .map(move |i| (c[i], c[(i + 1) % c.len()]))
+                .filter(|(u, v)| u != v)
+                .map(|(u, v)| side_key(u, v))
         })
-    };
-    // A counting sort by the lower point: bucket `lo` is `others[starts[lo]..starts[lo + 1]]`,
-    // each entry the other point and the way (lowest bit).
-    let mut starts = vec![0u32; points + 1];
-    for &k in front {
-        for (lo, _, _) in sides(k) {
-            starts[lo as usize + 1] += 1;
-        }
-    }
-    for i in 0..points {
-        starts[i + 1] += starts[i];
-    }
-    let mut others = vec![0u32; starts[points] as usize];
-    let mut next = starts.clone();
-    for &k in front {
-        for (lo, hi, up) in sides(k) {
-            others[next[lo as usize] as usize] = hi << 1 | up as u32;
-            next[lo as usize] += 1;
-        }
-    }
-    drop(next);
-    // Per bucket, the segments whose sides run one way only (a run of one other point and one
-    // way), on all cores.
+        .collect();
+    let one_way = point_pairs(screen.grid_points.len(), &keys, |up, down| {
+        up == 0 || down == 0
+    });
+    drop(keys);
+    // By coordinates from here: (the segment, its ends in increasing order; does the side run
+    // that way?).
     let xy = |i: u32| {
         let g = screen.grid_points[i as usize];
         [g.x, g.y]
     };
-    let mut unmatched: Vec<([[i64; 2]; 2], bool)> = (0..points)
-        .into_par_iter()
-        .with_min_len(4096)
-        .fold(Vec::new, |mut unmatched, lo| {
-            // Buckets are small (six sides at a mesh's vertex on average, half of them here).
-            let mut bucket: SmallVec<[u32; 8]> =
-                SmallVec::from_slice(&others[starts[lo] as usize..starts[lo + 1] as usize]);
-            bucket.sort_unstable();
-            for run in bucket.chunk_by(|a, b| a >> 1 == b >> 1) {
-                let hi = run[0] >> 1;
-                let one_way = run[0] & 1 == run[run.len() - 1] & 1;
-                if one_way && hi != lo as u32 {
-                    // By coordinates from here: (the segment, its ends in increasing order;
-                    // does the side run that way?).
-                    let (u, v, up) = (xy(lo as u32), xy(hi), run[0] & 1 == 1);
-                    unmatched.push(if u <= v { ([u, v], up) } else { ([v, u], !up) });
-                }
-            }
-            unmatched
+    let mut unmatched: Vec<([[i64; 2]; 2], bool)> = (one_way.into_iter())
+        .map(|pair| {
+            let (u, v, up) = (xy(pair.lo), xy(pair.hi), pair.up > 0);
+            if u <= v { ([u, v], up) } else { ([v, u], !up) }
         })
-        .reduce(Vec::new, |mut a, mut b| {
-            a.append(&mut b);
-            a
-        });
-    drop(others);
-    // The unmatched sides by their segments: a segment is a contour side when they all run one
-    // way (the first and last of its run agree) and it has a length.
+        .collect();
+    // A segment is a contour side when its sides all run one way (the first and last of its
+    // run agree) and it has a length.
     unmatched.par_sort_unstable();
     (unmatched.chunk_by(|a, b| a.0 == b.0))
         .filter(|run| run[0].1 == run[run.len() - 1].1 && run[0].0[0] != run[0].0[1])
