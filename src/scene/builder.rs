@@ -245,6 +245,42 @@ impl SceneBuilder {
         FaceOutcome::Kept
     }
 
+    /// [`Self::add_plain_triangle`] of each triangle of `corners` (three corners each, every
+    /// triangle plain), all of `material` and without corner attributes: the same faces, added
+    /// at once (a loader's run of them is most of a mesh; the OBJ loader's serial loop over
+    /// dragon's 871k triangles took 23 ms adding them one by one, 12 ms so).
+    pub fn add_plain_triangles(&mut self, corners: &[u32], material: u32) {
+        debug_assert!(corners.chunks(3).all(|c| self.is_plain_triangle(c)));
+        let count = corners.len() / 3;
+        if count == 0 {
+            return;
+        }
+        if !self.mesh_open {
+            self.begin_mesh("mesh");
+        }
+        let (first_id, start) = (self.scene.input_faces, self.scene.corners.len() as u32);
+        self.scene.input_faces += count as u32;
+        self.scene.corners.extend_from_slice(&corners[..3 * count]);
+        // Attribute vectors stay empty until some face has the attribute, then cover every
+        // corner (as `push_face` keeps them).
+        let n = self.scene.corners.len();
+        if !self.scene.corner_normals.is_empty() {
+            self.scene.corner_normals.resize(n, None);
+        }
+        if !self.scene.corner_uvs.is_empty() {
+            self.scene.corner_uvs.resize(n, None);
+        }
+        let mesh = (self.scene.meshes.len() - 1) as u32;
+        self.scene.faces.extend((0..count as u32).map(|j| Face {
+            id: first_id + j,
+            mesh,
+            material,
+            start: start + 3 * j,
+            len: 3,
+        }));
+        self.scene.meshes.last_mut().unwrap().faces.end = self.scene.faces.len();
+    }
+
     /// Adds the face made of the input corners at positions `picks` of `input`.
     fn push_face(
         &mut self,
@@ -434,6 +470,47 @@ mod tests {
             b.add_vertex(DVec3::from_array(*p));
         }
         b
+    }
+
+    /// A run of plain triangles added at once is the scene that adding them one by one makes:
+    /// the faces, their ids and corners, the mesh, and attribute lists kept covering every
+    /// corner once a face before the run had normals.
+    #[test]
+    fn plain_triangles_added_at_once_are_added_as_one_by_one() {
+        let points = [
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [1., 1., 0.],
+            [0., 1., 0.],
+            [2., 0., 1.],
+        ];
+        let run = [0, 1, 2, 0, 2, 3, 1, 4, 2];
+        let normal = [DVec3::Z; 3];
+        for with_normals in [false, true] {
+            let [mut one, mut all] = [builder_with(&points), builder_with(&points)];
+            for b in [&mut one, &mut all] {
+                let m = b.default_material();
+                if with_normals {
+                    let attrs = CornerAttrs {
+                        normals: Some(&normal),
+                        uvs: None,
+                    };
+                    b.add_plain_triangle(&[0, 1, 3], m, attrs);
+                }
+            }
+            let m = one.default_material();
+            for t in run.chunks(3) {
+                one.add_plain_triangle(t, m, CornerAttrs::default());
+            }
+            all.add_plain_triangles(&run, m);
+            let (one, all) = (one.finish().unwrap(), all.finish().unwrap());
+            assert_eq!(one.faces, all.faces);
+            assert_eq!(one.corners, all.corners);
+            assert_eq!(one.corner_normals, all.corner_normals);
+            assert_eq!(one.corner_uvs, all.corner_uvs);
+            assert_eq!(one.meshes, all.meshes);
+            assert_eq!(one.input_faces, all.input_faces);
+        }
     }
 
     #[test]

@@ -644,7 +644,18 @@ impl<'a> Parser<'a> {
         let mut objects = self.objects.into_iter().peekable();
         let mut start = 0usize;
         let mut default = None;
-        for (k, f) in self.faces.iter().enumerate() {
+        let given = |list: &[u32], start: usize, end: usize| {
+            list.len() >= end && !list[start..end].contains(&NONE)
+        };
+        // A plain triangle without corner attributes: the faces added in runs.
+        let bare = |k: usize, start: usize| {
+            plain[k]
+                && !given(&self.corner_tex, start, start + 3)
+                && !given(&self.corner_nor, start, start + 3)
+        };
+        let mut k = 0;
+        while k < self.faces.len() {
+            let f = &self.faces[k];
             while let Some((_, name)) = objects.next_if(|(at, _)| *at <= k) {
                 b.begin_mesh(name);
             }
@@ -653,13 +664,27 @@ impl<'a> Parser<'a> {
                 Some(&m) => m,
                 None => *default.get_or_insert_with(|| b.default_material()),
             };
+            if bare(k, start) {
+                // The run of bare triangles of this material within this object.
+                let mut run = 1;
+                while k + run < self.faces.len()
+                    && self.faces[k + run].slot == f.slot
+                    && objects.peek().is_none_or(|(at, _)| *at > k + run)
+                    && bare(k + run, start + 3 * run)
+                {
+                    run += 1;
+                }
+                b.add_plain_triangles(&self.corners[start..start + 3 * run], material);
+                start += 3 * run;
+                k += run;
+                continue;
+            }
             if let Some(c) = self.corners.get(start..end) {
-                let given = |list: &[u32]| list.len() >= end && !list[start..end].contains(&NONE);
-                let uvs: Option<Vec<[f64; 2]>> = given(&self.corner_tex).then(|| {
+                let uvs: Option<Vec<[f64; 2]>> = given(&self.corner_tex, start, end).then(|| {
                     let tex = &self.corner_tex[start..end];
                     tex.iter().map(|&i| self.uvs[i as usize]).collect()
                 });
-                let normals: Option<Vec<DVec3>> = given(&self.corner_nor).then(|| {
+                let normals: Option<Vec<DVec3>> = given(&self.corner_nor, start, end).then(|| {
                     let nor = &self.corner_nor[start..end];
                     nor.iter().map(|&i| self.normals[i as usize]).collect()
                 });
@@ -674,6 +699,7 @@ impl<'a> Parser<'a> {
                 }
             }
             start = end;
+            k += 1;
         }
         let faces = self.faces.len();
         let name = self.name;
