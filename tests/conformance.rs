@@ -248,6 +248,34 @@ fn auto_subdivides_a_soup_of_large_crossing_faces() {
     assert!(got.stats["depth_complexity_estimate"].as_f64().unwrap() > 8.0);
 }
 
+/// `auto` orders slivers (an exported sphere's polar triangles, its poles on the silhouette of
+/// a front view) by a BSP tree per strip, and says so; the set is the map's.
+#[test]
+fn auto_orders_slivers_by_a_bsp_tree() {
+    use sightline::scene::primitives::exported_sphere_scene;
+    use sightline::visibility::auto::Orderer;
+    let Engine::Object(auto) = method("auto").unwrap().engine else {
+        panic!("auto is an object-space method")
+    };
+    let scene = exported_sphere_scene(20_000);
+    let camera = Camera::fit(
+        NamedView::Front,
+        scene.bounds().unwrap(),
+        false,
+        40.0,
+        96,
+        80,
+    );
+    let screen = prepare(&scene, &camera, CullMode::Auto).screen;
+    let got = auto.visible_set(&screen, &|_| false, None);
+    let want = CoverageMap.visible_set(&screen, &|_| false, None);
+    assert!(got.symmetric_difference(&want).is_empty());
+    let order = got.stats["stage_order"].as_str().unwrap();
+    assert_eq!(got.stats["chosen"], Orderer::Bsp.name(), "{order}");
+    assert!(order.contains("BSP tree"), "{order}");
+    assert!(got.stats["bsp_pair_tests"].as_u64().unwrap() > 0, "{order}");
+}
+
 /// `auto` hands large faces lying over many small ones (a housing: three plates in front of a
 /// grid of small spheres, the front row poking through the nearest plate) to Weiler–Atherton
 /// clipping, and says so; the set is the map's.
