@@ -13,6 +13,7 @@ use sightline::methods::{Engine, METHODS, method};
 use sightline::pipeline::{compare_ids, prepare};
 use sightline::project::CullMode;
 use sightline::scene::SceneBuilder;
+use sightline::visibility::visible_set::VisibleSet;
 use sightline::visibility::{CoverageMap, Strategy};
 use std::path::PathBuf;
 
@@ -229,21 +230,27 @@ fn auto_places_a_convex_mesh_whole_and_orders_what_overlaps() {
     }
 }
 
+/// `auto`'s visible set of `scene` seen from `view` (96 x 80 pixels), checked to be the coverage
+/// map's, and its `stage_order` line.
+fn auto_as_the_map(scene: &sightline::scene::Scene, view: NamedView) -> (VisibleSet, String) {
+    let Engine::Object(auto) = method("auto").unwrap().engine else {
+        panic!("auto is an object-space method")
+    };
+    let camera = Camera::fit(view, scene.bounds().unwrap(), false, 40.0, 96, 80);
+    let screen = prepare(scene, &camera, CullMode::Auto).screen;
+    let got = auto.visible_set(&screen, &|_| false, None);
+    let want = CoverageMap.visible_set(&screen, &|_| false, None);
+    assert!(got.symmetric_difference(&want).is_empty());
+    let order = got.stats["stage_order"].as_str().unwrap().to_string();
+    (got, order)
+}
+
 /// `auto` hands a soup of large crossing triangles to Warnock's subdivision (the coverage map
 /// cuts each far piece by every nearer one there), and says so; the set is the map's.
 #[test]
 fn auto_subdivides_a_soup_of_large_crossing_faces() {
     use sightline::scene::primitives::random_triangle_soup;
-    let Engine::Object(auto) = method("auto").unwrap().engine else {
-        panic!("auto is an object-space method")
-    };
-    let scene = random_triangle_soup(200, 3);
-    let camera = Camera::fit(NamedView::Iso, scene.bounds().unwrap(), false, 40.0, 96, 80);
-    let screen = prepare(&scene, &camera, CullMode::Auto).screen;
-    let got = auto.visible_set(&screen, &|_| false, None);
-    let want = CoverageMap.visible_set(&screen, &|_| false, None);
-    assert!(got.symmetric_difference(&want).is_empty());
-    let order = got.stats["stage_order"].as_str().unwrap();
+    let (got, order) = auto_as_the_map(&random_triangle_soup(200, 3), NamedView::Iso);
     assert!(order.contains("Warnock"), "{order}");
     assert!(got.stats["depth_complexity_estimate"].as_f64().unwrap() > 8.0);
 }
@@ -254,23 +261,7 @@ fn auto_subdivides_a_soup_of_large_crossing_faces() {
 fn auto_orders_slivers_by_a_bsp_tree() {
     use sightline::scene::primitives::exported_sphere_scene;
     use sightline::visibility::auto::Orderer;
-    let Engine::Object(auto) = method("auto").unwrap().engine else {
-        panic!("auto is an object-space method")
-    };
-    let scene = exported_sphere_scene(20_000);
-    let camera = Camera::fit(
-        NamedView::Front,
-        scene.bounds().unwrap(),
-        false,
-        40.0,
-        96,
-        80,
-    );
-    let screen = prepare(&scene, &camera, CullMode::Auto).screen;
-    let got = auto.visible_set(&screen, &|_| false, None);
-    let want = CoverageMap.visible_set(&screen, &|_| false, None);
-    assert!(got.symmetric_difference(&want).is_empty());
-    let order = got.stats["stage_order"].as_str().unwrap();
+    let (got, order) = auto_as_the_map(&exported_sphere_scene(20_000), NamedView::Front);
     assert_eq!(got.stats["chosen"], Orderer::Bsp.name(), "{order}");
     assert!(order.contains("BSP tree"), "{order}");
     assert!(got.stats["bsp_pair_tests"].as_u64().unwrap() > 0, "{order}");
@@ -285,9 +276,6 @@ fn auto_clips_large_faces_over_many_small_ones() {
     use sightline::scene::primitives::{add_box, add_sphere};
     use sightline::visibility::auto::Orderer;
     type V = glam::DVec3;
-    let Engine::Object(auto) = method("auto").unwrap().engine else {
-        panic!("auto is an object-space method")
-    };
     let mut b = SceneBuilder::new("housing");
     let m = b.default_material();
     b.begin_mesh("parts");
@@ -306,20 +294,7 @@ fn auto_clips_large_faces_over_many_small_ones() {
         let at = glam::DMat4::from_translation(V::new(0.1, 0.05, z));
         add_box(&mut b, &at, V::new(3.4, 3.2, 0.05), m);
     }
-    let scene = b.finish().unwrap();
-    let camera = Camera::fit(
-        NamedView::Front,
-        scene.bounds().unwrap(),
-        false,
-        40.0,
-        96,
-        80,
-    );
-    let screen = prepare(&scene, &camera, CullMode::Auto).screen;
-    let got = auto.visible_set(&screen, &|_| false, None);
-    let want = CoverageMap.visible_set(&screen, &|_| false, None);
-    assert!(got.symmetric_difference(&want).is_empty());
-    let order = got.stats["stage_order"].as_str().unwrap();
+    let (got, order) = auto_as_the_map(&b.finish().unwrap(), NamedView::Front);
     assert_eq!(
         got.stats["chosen"],
         Orderer::WeilerAtherton.name(),
