@@ -878,6 +878,49 @@ mod tests {
         assert_eq!(s.meshes[1].name, "b");
     }
 
+    /// Bare triangles are added in runs; a run ends at an object, a `usemtl` (of an undefined
+    /// material here: the default one), a face with corner attributes, a quad and a degenerate
+    /// face, each face keeping its id, mesh, corners and attributes in file order.
+    #[test]
+    fn runs_of_bare_triangles_end_where_the_faces_differ() {
+        let s = load_str(concat!(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\nvt 0 0\nvn 0 0 1\n",
+            "o a\nf 1 2 3\nf 2 4 3\n",
+            "usemtl m\nf 1 2 4\nf 1/1 2/1 3/1\nf 2 5 4\n",
+            "o b\nf 1 2 3\nf 1 5 4\nf 1//1 2//1 4//1\nf 1 2 4 3\nf 3 4 3\nf 2 4 3\n",
+        ))
+        .unwrap();
+        let corners: Vec<&[u32]> = s.faces.iter().map(|f| s.face_corners(f)).collect();
+        let want: [&[u32]; 10] = [
+            &[0, 1, 2],
+            &[1, 3, 2],
+            &[0, 1, 3],
+            &[0, 1, 2],
+            &[1, 4, 3],
+            &[0, 1, 2],
+            &[0, 4, 3],
+            &[0, 1, 3],
+            &[0, 1, 3, 2],
+            &[1, 3, 2],
+        ];
+        assert_eq!(corners, want);
+        // The degenerate face (index 9 in the file) is dropped: ids skip it.
+        let ids: Vec<u32> = s.faces.iter().map(|f| f.id).collect();
+        assert_eq!(ids, [0, 1, 2, 3, 4, 5, 6, 7, 8, 10]);
+        let meshes: Vec<u32> = s.faces.iter().map(|f| f.mesh).collect();
+        assert_eq!(meshes, [0, 0, 0, 0, 0, 1, 1, 1, 1, 1]);
+        assert_eq!(s.corner_uvs.len(), s.corners.len());
+        assert!(s.corner_uvs[9..12].iter().all(Option::is_some));
+        assert!(
+            s.corner_uvs[..9]
+                .iter()
+                .chain(&s.corner_uvs[12..])
+                .all(Option::is_none)
+        );
+        assert_eq!(s.corner_normals.len(), s.corners.len());
+        assert!(s.corner_normals[21..24].iter().all(Option::is_some));
+    }
+
     #[test]
     fn unknown_material_warns_and_uses_default() {
         let s = load_str("v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl nope\nf 1 2 3\n").unwrap();
