@@ -21,8 +21,9 @@
 //! surrounding ones instead of cutting them by every nearer piece); Weiler–Atherton clipping
 //! where large pieces lie over many small ones (CAD housings over hidden parts: each clip
 //! polygon drops everything behind it at once), given up for the coverage map when its
-//! recursion runs deep; a BSP tree per strip ([`Bsp`]) where the pieces are slivers; the
-//! coverage map for pieces of like size (scans of one surface). Not yet: depth-separable groups handed to Newell's sort, per-group
+//! recursion runs deep; a BSP tree per strip ([`Bsp`]) where the pieces are slivers, or of like
+//! size with none seen from the back (culled closed meshes); the coverage map for the rest
+//! (open scans, seen from both sides). Not yet: depth-separable groups handed to Newell's sort, per-group
 //! choices (see PROGRESS.md). The `chosen` statistic names what ran. Invariant: the visible set
 //! is the coverage map's whatever ran (every exact strategy's is), so the drawing's bytes are
 //! the same.
@@ -246,7 +247,7 @@ fn by_bsp(
     let strips = Strips::for_pieces(&pieces);
     let strip_count = strips.count();
     let (visible, bs) = solve_strips(strips.cut(pieces), report, |strip, report| {
-        Ok(Bsp::build_from(screen, strip, report).into_visible_pieces(screen))
+        Ok(Bsp::visible_pieces_of(screen, strip, report))
     })
     .expect("the BSP never gives up");
     stage(
@@ -528,6 +529,14 @@ pub const SKEW: f64 = 1.5;
 /// diff_pinion 0.23 -> 0.24 s (peak 57 -> 18 MB); same bytes.
 pub const SLIVER_BOX_RATIO: f64 = 8.0;
 
+// Pieces of like size go to the BSP tree too when none is seen from the back (culled closed
+// meshes; `Crowding::back_share` zero), else to the coverage map: the tree was the faster of
+// the two on every culled closed mesh of ../shared/meshes and the map on the open scans (whole
+// `render`, session 35, 7 interleaved runs, medians, map -> tree: dragon 1.42 -> 1.38 s, igea
+// 0.37 -> 0.34, counter 0.25 -> 0.22, armadillo 0.20 -> 0.19, nefertiti 0.17 -> 0.16, horse
+// 0.15 -> 0.15; open, tree against map: buddha 0.59 / 0.55, dragon_res2 0.84 / 0.76, bunny 0.19
+// / 0.18).
+
 /// Weiler–Atherton clipping is given up (for the coverage map) when its recursion goes deeper:
 /// large faces whose nearest corner is near but whose body lies behind others keep finding
 /// nearer polygons inside them (samurai_monastery: 1,045 levels, 5x the map's time; given up
@@ -660,6 +669,14 @@ impl Crowding {
             (
                 Orderer::Bsp,
                 format!("slivers: the median piece's box is {sliver:.1} times its area"),
+            )
+        } else if back == 0.0 {
+            (
+                Orderer::Bsp,
+                format!(
+                    "pieces of like size, none seen from the back: mean box depth {mean:.1}, \
+                     median box depth {med:.1}"
+                ),
             )
         } else {
             (
@@ -818,15 +835,17 @@ mod tests {
             chose(crowding(0.05, 3.4, 0.0, 3.3)),
             Orderer::WeilerAtherton
         );
-        // A scan of one surface (bunny), and a soup too sparse to subdivide.
-        assert_eq!(chose(crowding(3.0, 3.1, 0.0, 2.5)), Orderer::CoverageMap);
+        // An open scan seen from both sides (bunny), and a soup too sparse to subdivide.
+        assert_eq!(chose(crowding(3.0, 3.1, 0.3, 2.5)), Orderer::CoverageMap);
         assert_eq!(chose(crowding(2.0, 2.2, 0.5, 3.0)), Orderer::CoverageMap);
+        // A culled closed mesh (dragon): nothing seen from the back.
+        assert_eq!(chose(crowding(1.2, 1.3, 0.0, 2.6)), Orderer::Bsp);
         // The thresholds themselves.
-        assert_eq!(chose(crowding(1.0, 2.4, 0.0, 2.5)), Orderer::CoverageMap);
-        assert_eq!(chose(crowding(1.0, 2.5, 0.0, 2.5)), Orderer::WeilerAtherton);
-        assert_eq!(chose(crowding(2.0, 2.9, 0.0, 2.5)), Orderer::CoverageMap);
-        assert_eq!(chose(crowding(2.0, 2.5, 0.0, 8.0)), Orderer::Bsp);
-        assert_eq!(chose(crowding(2.0, 2.5, 0.0, 7.9)), Orderer::CoverageMap);
+        assert_eq!(chose(crowding(1.0, 2.4, 0.1, 2.5)), Orderer::CoverageMap);
+        assert_eq!(chose(crowding(1.0, 2.5, 0.1, 2.5)), Orderer::WeilerAtherton);
+        assert_eq!(chose(crowding(2.0, 2.9, 0.1, 2.5)), Orderer::CoverageMap);
+        assert_eq!(chose(crowding(2.0, 2.5, 0.1, 8.0)), Orderer::Bsp);
+        assert_eq!(chose(crowding(2.0, 2.5, 0.1, 7.9)), Orderer::CoverageMap);
     }
 
     /// Large squares over many small triangles: clipping is chosen and given up (tilted squares,

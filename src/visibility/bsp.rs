@@ -542,7 +542,28 @@ impl Bsp {
     /// Builds the 3D BSP of some of a screen scene's pieces, reporting as
     /// [`Self::build_with_progress`].
     pub fn build_from(screen: &ScreenScene, pieces: Vec<Piece>, report: Option<Report>) -> Bsp {
-        let mut ticker = Ticker::new(report, "painter order", pieces.len() as u64);
+        Self::build_reporting(screen, pieces, report, "painter order")
+    }
+
+    /// The visible pieces of some of a screen scene's pieces through their BSP
+    /// ([`Self::build_from`], [`Self::into_visible_pieces`]), reporting stage "visible set" as
+    /// the tree is built: what the `bsp` strategy and `auto` run per strip.
+    pub fn visible_pieces_of(
+        screen: &ScreenScene,
+        pieces: Vec<Piece>,
+        report: Option<Report>,
+    ) -> (Vec<Piece>, BspStats) {
+        Self::build_reporting(screen, pieces, report, "visible set").into_visible_pieces(screen)
+    }
+
+    /// [`Self::build_from`], reporting as stage `stage`.
+    fn build_reporting(
+        screen: &ScreenScene,
+        pieces: Vec<Piece>,
+        report: Option<Report>,
+        stage: &'static str,
+    ) -> Bsp {
+        let mut ticker = Ticker::new(report, stage, pieces.len() as u64);
         // Pieces waiting in `work`: fragments placed + pending is every fragment known so far.
         let mut pending = pieces.len();
         let mut stats = BspStats {

@@ -43,7 +43,7 @@ impl Strategy for BspTree {
         let strip_count = strips.count();
         let clear_count = clear.len();
         let (visible, st) = solve_strips_beside(rest, clear, report, |strip, report| {
-            Ok(Bsp::build_from(screen, strip, report).into_visible_pieces(screen))
+            Ok(Bsp::visible_pieces_of(screen, strip, report))
         })
         .expect("the BSP never gives up");
         let (visible, layered, translucent_bsp) = if layered {
