@@ -56,6 +56,7 @@ pub use render::RenderOptions;
 pub use scene::{Face, FaceId, Material, Mesh, Scene, load};
 pub use visibility::{Strategy, VisibleSet};
 pub mod benchmark;
+pub(crate) mod buckets;
 pub mod camera;
 pub mod draw;
 pub mod exact;

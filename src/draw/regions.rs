@@ -33,6 +33,7 @@
 //!   piece's ring joined to the other's, the edge's ends dropped where the boundary goes
 //!   straight through them (the same exact test).
 
+use crate::buckets::sorted_by_low;
 use crate::exact::Samples;
 use crate::exact::polygon::Piece;
 use crate::exact::predicates::{Line, LineApprox, crossing_rounded};
@@ -570,36 +571,18 @@ fn edge_partners(ids: &PerVertex<u32>, id_count: usize) -> Vec<u32> {
             (0..v.len()).map(move |k| (v[k], v[(k + 1) % v.len()], (first + k) as u32))
         })
     };
-    // The edges by their smaller end, in a counting sort (the ids are dense): the edges between
-    // two points meet in one bucket of a few. A sort of all edges by both ends took three
-    // times as long.
-    let mut start = vec![0u32; id_count + 1];
-    for (a, b, _) in edges() {
-        start[a.min(b) as usize + 1] += 1;
-    }
-    for k in 1..start.len() {
-        start[k] += start[k - 1];
-    }
-    // (the larger end; whether the edge runs from it; the edge)
-    let mut bucketed = vec![(0u32, false, 0u32); edge_count];
-    let mut next = start.clone();
-    for (a, b, e) in edges() {
-        let at = &mut next[a.min(b) as usize];
-        bucketed[*at as usize] = (a.max(b), a > b, e);
-        *at += 1;
-    }
-    for ends in start.windows(2) {
-        let bucket = &mut bucketed[ends[0] as usize..ends[1] as usize];
-        if bucket.len() < 2 {
-            continue;
-        }
-        // Ordered as `cancelling_pairs` orders the edges between one pair of ends.
-        bucket.sort_unstable();
-        for (e, f) in paired_in_runs(bucket) {
-            let (e, f) = (e as usize, f as usize);
-            partners[e] = piece_of[f];
-            partners[f] = piece_of[e];
-        }
+    // The edges as ((smaller end, larger end), whether the edge runs from the larger, the
+    // edge), in the order `cancelling_pairs` sorts them: by a counting sort on the smaller end
+    // (the ids are dense; a sort of all edges by both ends took three times as long).
+    let sorted = sorted_by_low(
+        id_count,
+        || edges().map(|(a, b, e)| ((a.min(b), a.max(b)), a > b, e)),
+        |edge| edge.0.0,
+    );
+    for (e, f) in paired_in_runs(&sorted) {
+        let (e, f) = (e as usize, f as usize);
+        partners[e] = piece_of[f];
+        partners[f] = piece_of[e];
     }
     partners
 }

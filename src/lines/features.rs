@@ -21,6 +21,7 @@
 //!   view.
 
 use super::drawing::LineKind;
+use crate::buckets::sorted_by_low;
 use crate::project::{Orientation, ScreenScene};
 use crate::scene::Scene;
 use glam::DVec3;
@@ -130,9 +131,9 @@ pub fn features(scene: &Scene, screen: &ScreenScene, crease_deg: f64) -> Feature
 }
 
 /// Every face side between two welded vertices (`weld_id`, below `ids`) as (smaller id,
-/// larger id, face, k, whether it runs from the smaller to the larger), in ascending order. By
-/// a counting sort on the smaller id (the ids are dense), then each id's few sides sorted: a
-/// sort of all the sides took most of the feature search.
+/// larger id, face, k, whether it runs from the smaller to the larger), in ascending order
+/// ([`sorted_by_low`] on the smaller id: a sort of all the sides took most of the feature
+/// search).
 fn sorted_sides(scene: &Scene, weld_id: &[u32], ids: usize) -> Vec<(u32, u32, u32, u32, bool)> {
     let sides = || {
         scene.faces.iter().enumerate().flat_map(|(fi, face)| {
@@ -145,24 +146,7 @@ fn sorted_sides(scene: &Scene, weld_id: &[u32], ids: usize) -> Vec<(u32, u32, u3
             })
         })
     };
-    let mut start = vec![0usize; ids + 1];
-    for s in sides() {
-        start[s.0 as usize + 1] += 1;
-    }
-    for k in 1..start.len() {
-        start[k] += start[k - 1];
-    }
-    let mut sorted = vec![(0, 0, 0, 0, false); start[ids]];
-    let mut next = start.clone();
-    for s in sides() {
-        let at = &mut next[s.0 as usize];
-        sorted[*at] = s;
-        *at += 1;
-    }
-    for ends in start.windows(2) {
-        sorted[ends[0]..ends[1]].sort_unstable();
-    }
-    sorted
+    sorted_by_low(ids, sides, |s| s.0)
 }
 
 /// The kind of an edge of two faces, if it is a feature.

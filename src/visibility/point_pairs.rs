@@ -2,13 +2,13 @@
 //! do not cancel) for the occlusion cells and the clear pieces alike.
 //!
 //! A mesh's vertex is one grid point whichever faces name it (`ScreenScene::grid_points`), so
-//! the sides of abutting faces name the same two points. Counted by their lower point into
-//! buckets (a counting sort: no comparison of sides, no coordinates read), a bucket's sides meet
-//! their partners by the other point. Invariant: a pair of points is reported with exactly the
+//! the sides of abutting faces name the same two points. Sorted by their lower point into
+//! buckets ([`sorted_by_low`]: no comparison of all the sides, no coordinates read), a bucket's
+//! sides meet their partners by the other point. Invariant: a pair of points is reported with exactly the
 //! numbers of sides that run each way between them; only the pairs the caller keeps are listed.
 
+use crate::buckets::sorted_by_low;
 use rayon::prelude::*;
-use smallvec::SmallVec;
 
 /// A side from grid point `from` to grid point `to` (indices, distinct, below 2^31), packed as
 /// the pair's lower point, upper point and whether it runs upwards: the key [`point_pairs`]
@@ -45,46 +45,16 @@ pub(crate) fn point_pairs(
     keep: impl Fn(u32, u32) -> bool + Sync,
 ) -> Vec<PointPair> {
     assert!(points < 1 << 31, "grid points are numbered in 31 bits");
-    let lower = |key: u64| (key >> 33) as usize;
-    // Bucket `lo` is `others[starts[lo]..starts[lo + 1]]`: each side's upper point and way.
-    let mut starts = vec![0u32; points + 1];
-    for &key in keys {
-        starts[lower(key) + 1] += 1;
-    }
-    for i in 0..points {
-        starts[i + 1] += starts[i];
-    }
-    let mut others = vec![0u32; keys.len()];
-    let mut next = starts.clone();
-    for &key in keys {
-        let at = &mut next[lower(key)];
-        // The upper point and the way: the key's low 32 bits.
-        others[*at as usize] = key as u32;
-        *at += 1;
-    }
-    drop(next);
-    (0..points)
-        .into_par_iter()
-        .with_min_len(4096)
-        .fold(Vec::new, |mut pairs, lo| {
-            // Buckets are small (three sides on average at a mesh's vertex).
-            let mut bucket: SmallVec<[u32; 8]> =
-                SmallVec::from_slice(&others[starts[lo] as usize..starts[lo + 1] as usize]);
-            bucket.sort_unstable();
-            for run in bucket.chunk_by(|a, b| a >> 1 == b >> 1) {
-                let up = run.iter().filter(|&&s| s & 1 == 1).count() as u32;
-                let down = run.len() as u32 - up;
-                if keep(up, down) {
-                    let (lo, hi) = (lo as u32, run[0] >> 1);
-                    pairs.push(PointPair { lo, hi, up, down });
-                }
-            }
-            pairs
+    // A key orders by its lower point first: sorted, the sides of one pair are neighbours.
+    let sorted = sorted_by_low(points, || keys.iter().copied(), |&key| (key >> 33) as u32);
+    (sorted.par_chunk_by(|a, b| a >> 1 == b >> 1))
+        .filter_map(|run| {
+            let up = run.iter().filter(|&&s| s & 1 == 1).count() as u32;
+            let down = run.len() as u32 - up;
+            let (lo, hi) = ((run[0] >> 33) as u32, (run[0] >> 1) as u32);
+            keep(up, down).then_some(PointPair { lo, hi, up, down })
         })
-        .reduce(Vec::new, |mut a, mut b| {
-            a.append(&mut b);
-            a
-        })
+        .collect()
 }
 
 #[cfg(test)]
